@@ -1,0 +1,99 @@
+#include "geometry/normals_gpu.h"
+
+#include "core/error.h"
+#include "geometry/wedges.h"
+#include "shaders/normals_comp.h"
+#include "shaders/shared.h"
+
+#include <cmath>
+
+namespace facesketch {
+
+namespace {
+struct alignas(16) NormalsConstants {
+    std::uint32_t vertexCount;
+    std::uint32_t meshCount;
+};
+} // namespace
+
+GpuNormals::GpuNormals(gpu::Device& device, const Triangles& F, Eigen::Index vertexCount)
+    : device_(device), vertexCount_(vertexCount)
+{
+    if (vertexCount <= 0 || F.rows() == 0)
+        fail("GpuNormals: need at least one vertex and one triangle (got ", vertexCount, " and ", F.rows(), ")");
+    const Wedges w = buildWedges(F, vertexCount);
+    program_ = gpu::createComputeProgram(device_, gpu::shaderCode(normals_comp), 4, sizeof(NormalsConstants));
+    wedgeOffsets_ = gpu::createBuffer(device_, w.offsets.size() * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    wedges_ = gpu::createBuffer(device_, w.corners.size() * sizeof(w.corners[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    gpu::uploadBuffer(device_, wedgeOffsets_, w.offsets.data(), wedgeOffsets_.size);
+    gpu::uploadBuffer(device_, wedges_, w.corners.data(), wedges_.size);
+    timer_ = gpu::createGpuTimer(device_);
+}
+
+GpuNormals::~GpuNormals()
+{
+    vkDeviceWaitIdle(device_.device);
+    gpu::destroyGpuTimer(device_, timer_);
+    if (normals_.buffer)
+        gpu::destroyBuffer(device_, normals_);
+    if (positions_.buffer)
+        gpu::destroyBuffer(device_, positions_);
+    gpu::destroyBuffer(device_, wedges_);
+    gpu::destroyBuffer(device_, wedgeOffsets_);
+    gpu::destroyComputeProgram(device_, program_);
+}
+
+void GpuNormals::setPositions(const std::vector<float>& positions)
+{
+    const size_t stride = static_cast<size_t>(vertexCount_) * 3;
+    if (positions.empty() || positions.size() % stride != 0)
+        fail("GpuNormals: ", positions.size(), " floats is not a whole number of meshes of ", vertexCount_, " vertices");
+    for (size_t i = 0; i < positions.size(); ++i)
+        if (!std::isfinite(positions[i]))
+            fail("GpuNormals: mesh ", i / stride, " vertex ", (i % stride) / 3, " has non-finite coordinate ", positions[i]);
+    const VkDeviceSize bytes = positions.size() * sizeof(float);
+    if (!positions_.buffer || positions_.size < bytes) {
+        vkDeviceWaitIdle(device_.device);
+        if (positions_.buffer) {
+            gpu::destroyBuffer(device_, positions_);
+            gpu::destroyBuffer(device_, normals_);
+        }
+        positions_ = gpu::createBuffer(device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        normals_ = gpu::createBuffer(device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    }
+    gpu::uploadBuffer(device_, positions_, positions.data(), bytes);
+    meshCount_ = static_cast<std::uint32_t>(positions.size() / stride);
+}
+
+double GpuNormals::run()
+{
+    if (meshCount_ == 0)
+        fail("GpuNormals::run: no positions set");
+    const NormalsConstants constants{static_cast<std::uint32_t>(vertexCount_), meshCount_};
+    gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
+        gpu::timerStart(cmd, timer_);
+        gpu::dispatch(device_, cmd, program_, constants.vertexCount, constants.meshCount, 1,
+                      {&positions_, &wedgeOffsets_, &wedges_, &normals_}, constants);
+        gpu::hostReadBarrier(cmd);
+        gpu::timerEnd(cmd, timer_);
+    });
+    return gpu::timerMilliseconds(device_, timer_);
+}
+
+std::vector<float> GpuNormals::normals()
+{
+    std::vector<float> out(static_cast<size_t>(meshCount_) * vertexCount_ * 3);
+    gpu::readbackBuffer(device_, normals_, out.data(), out.size() * sizeof(float));
+    return out;
+}
+
+std::vector<float> vertexNormalsGpu(gpu::Device& device, const std::vector<float>& positions, const Triangles& F,
+                                    Eigen::Index vertexCount)
+{
+    GpuNormals kernel(device, F, vertexCount);
+    kernel.setPositions(positions);
+    kernel.run();
+    return kernel.normals();
+}
+
+} // namespace facesketch

@@ -1,0 +1,25 @@
+#include "geometry/wedges.h"
+
+namespace facesketch {
+
+Wedges buildWedges(const Triangles& F, Eigen::Index vertexCount)
+{
+    Wedges w;
+    w.offsets.assign(static_cast<size_t>(vertexCount) + 1, 0);
+    for (Eigen::Index t = 0; t < F.rows(); ++t)
+        for (int c = 0; c < 3; ++c)
+            ++w.offsets[F(t, c) + 1];
+    for (size_t v = 0; v < static_cast<size_t>(vertexCount); ++v)
+        w.offsets[v + 1] += w.offsets[v];
+
+    w.corners.resize(static_cast<size_t>(F.rows()) * 3);
+    std::vector<std::uint32_t> fill(w.offsets.begin(), w.offsets.end() - 1);
+    for (Eigen::Index t = 0; t < F.rows(); ++t)
+        for (int c = 0; c < 3; ++c) {
+            const auto v = F(t, c);
+            w.corners[fill[v]++] = {static_cast<std::uint32_t>(F(t, (c + 1) % 3)), static_cast<std::uint32_t>(F(t, (c + 2) % 3))};
+        }
+    return w;
+}
+
+} // namespace facesketch

@@ -1,0 +1,53 @@
+#pragma once
+// Buffers, images and host<->device copies. One VkDeviceMemory per resource: FaceSketch holds
+// tens of resources, not thousands, so a sub-allocator would only add failure modes.
+// Plain structs with createX/destroyX pairs; destroy in reverse order of creation.
+
+#include "gpu/device.h"
+
+#include <cstddef>
+
+namespace facesketch::gpu {
+
+enum class MemoryUse {
+    Device,   ///< GPU-local; mapped too when the device shares memory with the host (lavapipe, UMA)
+    Readback, ///< host-visible, cached when possible: the GPU writes, the CPU reads
+};
+
+struct Buffer {
+    VkBuffer buffer = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkDeviceSize size = 0;
+    void* mapped = nullptr; ///< non-null when the memory is host-visible (persistently mapped)
+};
+
+/// A buffer of `size` bytes (> 0). Transfer source/destination usage is always added.
+Buffer createBuffer(Device& device, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use = MemoryUse::Device);
+void destroyBuffer(Device& device, Buffer& buffer);
+
+/// Copies `size` bytes from host `data` to `buffer` at `offset`: by memcpy when the buffer is
+/// mapped, otherwise through a staging buffer and a queue submission. Waits until done.
+void uploadBuffer(Device& device, Buffer& buffer, const void* data, std::size_t size, VkDeviceSize offset = 0);
+/// Copies `size` bytes of `buffer` at `offset` to host `data`; waits for the queue to be idle
+/// first, so all previously submitted writes are visible.
+void readbackBuffer(Device& device, const Buffer& buffer, void* data, std::size_t size, VkDeviceSize offset = 0);
+
+struct Image {
+    VkImage image = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    std::uint32_t width = 0, height = 0;
+};
+
+/// A 2D device-local image with one mip level and a view of `aspect`.
+Image createImage(Device& device, std::uint32_t width, std::uint32_t height, VkFormat format, VkImageUsageFlags usage,
+                  VkImageAspectFlags aspect, VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
+void destroyImage(Device& device, Image& image);
+
+/// Index of a memory type allowed by `typeBits` with all `required` flags, preferring one that
+/// also has `preferred`; throws Error when none exists.
+std::uint32_t chooseMemoryType(const Device& device, std::uint32_t typeBits, VkMemoryPropertyFlags required,
+                               VkMemoryPropertyFlags preferred);
+
+} // namespace facesketch::gpu

@@ -1,0 +1,66 @@
+#pragma once
+// Compute programs and the one dispatch helper. A program is a SPIR-V compute shader whose
+// bindings 0..N-1 in set 0 are all storage buffers, with an optional push-constant block.
+// The workgroup size is read from the SPIR-V (OpExecutionMode LocalSize), so the shader is the
+// single source of truth for it.
+
+#include "gpu/buffers.h"
+#include "gpu/device.h"
+
+#include <cassert>
+#include <cstddef>
+#include <cstdint>
+#include <initializer_list>
+
+namespace facesketch::gpu {
+
+/// SPIR-V words embedded at build time (shaders/CMakeLists.txt makes `<name>_<stage>` arrays).
+struct ShaderCode {
+    const std::uint32_t* words = nullptr;
+    std::size_t sizeBytes = 0;
+};
+
+template <std::size_t N>
+ShaderCode shaderCode(const std::uint32_t (&words)[N])
+{
+    return {words, sizeof(words)};
+}
+
+/// The LocalSize of a compute shader's entry point; throws Error if the SPIR-V has none.
+void readLocalSize(ShaderCode code, std::uint32_t localSize[3]);
+
+VkShaderModule createShaderModule(Device& device, ShaderCode code);
+
+struct ComputeProgram {
+    VkShaderModule module = VK_NULL_HANDLE;
+    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    std::uint32_t localSize[3] = {1, 1, 1};
+    std::uint32_t bufferCount = 0;
+    std::uint32_t pushConstantSize = 0;
+};
+
+ComputeProgram createComputeProgram(Device& device, ShaderCode code, std::uint32_t bufferCount, std::uint32_t pushConstantSize);
+void destroyComputeProgram(Device& device, ComputeProgram& program);
+
+/// Binds `program` and `buffers` (binding i = buffers[i], whole buffer), pushes `constants`
+/// and dispatches enough workgroups to cover countX x countY x countZ invocations. The shader
+/// must bounds-check. Put the barrier that consumes the result at the call site.
+void dispatchRaw(Device& device, VkCommandBuffer cmd, const ComputeProgram& program, std::uint32_t countX, std::uint32_t countY,
+                 std::uint32_t countZ, std::initializer_list<const Buffer*> buffers, const void* constants, std::size_t constantsSize);
+
+template <typename Constants>
+void dispatch(Device& device, VkCommandBuffer cmd, const ComputeProgram& program, std::uint32_t countX, std::uint32_t countY,
+              std::uint32_t countZ, std::initializer_list<const Buffer*> buffers, const Constants& constants)
+{
+    assert(program.pushConstantSize == sizeof(constants));
+    dispatchRaw(device, cmd, program, countX, countY, countZ, buffers, &constants, sizeof(constants));
+}
+
+/// Shader writes before the barrier are visible to later shader reads/writes and transfers.
+void computeBarrier(VkCommandBuffer cmd);
+/// Shader and transfer writes are visible to the host (before a readback of mapped memory).
+void hostReadBarrier(VkCommandBuffer cmd);
+
+} // namespace facesketch::gpu

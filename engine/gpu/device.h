@@ -1,0 +1,87 @@
+#pragma once
+// Vulkan instance and device without any window. Prefers a real GPU (discrete, then integrated),
+// falls back to a CPU implementation (Mesa lavapipe). FACESKETCH_DEVICE=<index or name
+// substring> overrides the choice. FACESKETCH_VALIDATION=1 (set by every test) or a debug build
+// enables VK_LAYER_KHRONOS_validation; each message it reports is printed and counted, and the
+// test main fails the test that caused it.
+//
+// Lifetime: plain structs with createX/destroyX pairs, destroyed in reverse order of creation.
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <string>
+
+namespace facesketch::gpu {
+
+/// Aborts with the failing call and its VkResult; for calls that cannot fail in a correct
+/// program. Calls with legitimate failures (device lost, out of memory) are checked by hand.
+#define VK_CHECK(call)                                                                         \
+    do {                                                                                       \
+        VkResult vkCheckResult_ = (call);                                                      \
+        if (vkCheckResult_ != VK_SUCCESS)                                                      \
+            ::facesketch::gpu::vkFailed(#call, vkCheckResult_, __FILE__, __LINE__);            \
+    } while (0)
+
+/// A zero-initialised Vulkan struct with its sType set: `auto info = makeStruct<VkBufferCreateInfo>(
+/// VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);` (brace-initialising only sType trips -Wextra).
+template <typename T>
+T makeStruct(VkStructureType type)
+{
+    T value{};
+    value.sType = type;
+    return value;
+}
+
+[[noreturn]] void vkFailed(const char* call, VkResult result, const char* file, int line);
+const char* vkResultName(VkResult result);
+
+struct DeviceOptions {
+    bool validation = false; ///< also on when FACESKETCH_VALIDATION=1 or in a debug build
+    bool requireValidation = false; ///< throw Error if the validation layer is missing
+};
+
+struct Device {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+    VkPhysicalDevice physical = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    VkQueue queue = VK_NULL_HANDLE;       ///< one queue that does graphics, compute and transfer
+    std::uint32_t queueFamily = 0;
+    VkCommandPool commandPool = VK_NULL_HANDLE; ///< for one-shot command buffers on `queue`
+    VkPhysicalDeviceProperties properties{};
+    VkPhysicalDeviceMemoryProperties memory{};
+    bool validation = false;    ///< the validation layer is active
+    bool timestamps = false;    ///< the queue supports timestamp queries
+    bool largePoints = false;
+    /// vkCmdPushDescriptorSetKHR (VK_KHR_push_descriptor is required: every desktop driver and
+    /// lavapipe have it, and it spares per-dispatch descriptor pools).
+    PFN_vkCmdPushDescriptorSetKHR pushDescriptorSet = nullptr;
+    std::string name;           ///< e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+};
+
+/// Creates instance, debug messenger (with validation), device and queue. Throws Error when no
+/// device with a graphics+compute queue exists.
+Device createDevice(const DeviceOptions& options = {});
+void destroyDevice(Device& device);
+
+/// Number of validation messages (warnings and errors) reported since the process started.
+std::uint64_t validationMessageCount();
+
+/// Records commands through `record` into a one-shot command buffer, submits it and waits.
+template <typename F>
+void submitAndWait(Device& device, F&& record);
+
+// Implementation detail of submitAndWait.
+VkCommandBuffer beginOneShot(Device& device);
+void endOneShotAndWait(Device& device, VkCommandBuffer cmd);
+
+template <typename F>
+void submitAndWait(Device& device, F&& record)
+{
+    VkCommandBuffer cmd = beginOneShot(device);
+    record(cmd);
+    endOneShotAndWait(device, cmd);
+}
+
+} // namespace facesketch::gpu

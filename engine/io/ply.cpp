@@ -1,0 +1,293 @@
+// Stanford PLY (Turk 1994; thesis appendix A.2), ASCII and binary, our own reader and writer:
+// Debian packages no PLY library, and we need errors that name the line or the element.
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "io/mesh_io.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+namespace facesketch {
+
+namespace {
+
+enum class Format { Ascii, BinaryLittle, BinaryBig };
+
+struct Property {
+    std::string name;
+    std::string type;        // scalar type, or the item type of a list
+    std::string countType;   // non-empty for lists
+};
+
+struct Element {
+    std::string name;
+    long count = 0;
+    std::vector<Property> properties;
+};
+
+int typeSize(const std::string& type)
+{
+    if (type == "char" || type == "uchar" || type == "int8" || type == "uint8")
+        return 1;
+    if (type == "short" || type == "ushort" || type == "int16" || type == "uint16")
+        return 2;
+    if (type == "int" || type == "uint" || type == "int32" || type == "uint32" || type == "float" || type == "float32")
+        return 4;
+    if (type == "double" || type == "float64")
+        return 8;
+    return 0;
+}
+
+// Reads one binary value of `type` and converts it to double.
+class BinaryReader {
+public:
+    BinaryReader(std::istream& in, Format format, const std::string& file) : in_(in), swap_(needSwap(format)), file_(file) {}
+
+    double read(const std::string& type, const std::string& context)
+    {
+        unsigned char bytes[8];
+        const int n = typeSize(type);
+        in_.read(reinterpret_cast<char*>(bytes), n);
+        if (in_.gcount() != n)
+            fail(file_, ": file ends inside ", context, " (truncated?)");
+        if (swap_)
+            std::reverse(bytes, bytes + n);
+        auto as = [&](auto value) {
+            std::memcpy(&value, bytes, sizeof(value));
+            return static_cast<double>(value);
+        };
+        if (type == "char" || type == "int8") return as(std::int8_t{});
+        if (type == "uchar" || type == "uint8") return as(std::uint8_t{});
+        if (type == "short" || type == "int16") return as(std::int16_t{});
+        if (type == "ushort" || type == "uint16") return as(std::uint16_t{});
+        if (type == "int" || type == "int32") return as(std::int32_t{});
+        if (type == "uint" || type == "uint32") return as(std::uint32_t{});
+        if (type == "float" || type == "float32") return as(float{});
+        return as(double{});
+    }
+
+private:
+    static bool needSwap(Format f)
+    {
+        return (f == Format::BinaryBig) == (std::endian::native == std::endian::little);
+    }
+    std::istream& in_;
+    bool swap_;
+    const std::string& file_;
+};
+
+} // namespace
+
+Mesh readPly(const std::filesystem::path& path)
+{
+    const std::string file = path.string();
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        fail(file, ": cannot open");
+
+    long line = 0;
+    std::string text;
+    auto nextLine = [&]() -> bool {
+        if (!std::getline(in, text))
+            return false;
+        ++line;
+        if (!text.empty() && text.back() == '\r')
+            text.pop_back();
+        return true;
+    };
+    if (!nextLine() || text != "ply")
+        fail(file, ":1: not a PLY file (first line must be 'ply')");
+
+    Format format = Format::Ascii;
+    bool haveFormat = false;
+    std::vector<Element> elements;
+    for (;;) {
+        if (!nextLine())
+            fail(file, ":", line, ": header ends without 'end_header'");
+        std::istringstream words(text);
+        std::string keyword;
+        words >> keyword;
+        auto where = [&] { return cat(file, ":", line, ": "); };
+        if (keyword == "end_header")
+            break;
+        if (keyword == "comment" || keyword == "obj_info" || keyword.empty())
+            continue;
+        if (keyword == "format") {
+            std::string name, version;
+            words >> name >> version;
+            if (name == "ascii") format = Format::Ascii;
+            else if (name == "binary_little_endian") format = Format::BinaryLittle;
+            else if (name == "binary_big_endian") format = Format::BinaryBig;
+            else fail(where(), "unknown format '", name, "'");
+            haveFormat = true;
+        } else if (keyword == "element") {
+            Element e;
+            if (!(words >> e.name >> e.count) || e.count < 0)
+                fail(where(), "bad element line '", text, "'");
+            elements.push_back(e);
+        } else if (keyword == "property") {
+            if (elements.empty())
+                fail(where(), "property before any element");
+            Property p;
+            std::string type;
+            words >> type;
+            if (type == "list") {
+                words >> p.countType >> p.type >> p.name;
+                if (typeSize(p.countType) == 0 || typeSize(p.type) == 0 || p.name.empty())
+                    fail(where(), "bad list property '", text, "'");
+            } else {
+                p.type = type;
+                words >> p.name;
+                if (typeSize(p.type) == 0 || p.name.empty())
+                    fail(where(), "bad property '", text, "'");
+            }
+            elements.back().properties.push_back(p);
+        } else {
+            fail(where(), "unknown header keyword '", keyword, "'");
+        }
+    }
+    if (!haveFormat)
+        fail(file, ": header has no 'format' line");
+
+    const Element* vertexElement = nullptr;
+    const Element* faceElement = nullptr;
+    int xyz[3] = {-1, -1, -1};
+    int indexProperty = -1;
+    for (const Element& e : elements) {
+        if (e.name == "vertex") {
+            vertexElement = &e;
+            for (size_t i = 0; i < e.properties.size(); ++i)
+                for (int c = 0; c < 3; ++c)
+                    if (e.properties[i].name == std::string(1, "xyz"[c]) && e.properties[i].countType.empty())
+                        xyz[c] = static_cast<int>(i);
+        } else if (e.name == "face") {
+            faceElement = &e;
+            for (size_t i = 0; i < e.properties.size(); ++i)
+                if (!e.properties[i].countType.empty() && (e.properties[i].name == "vertex_indices" || e.properties[i].name == "vertex_index"))
+                    indexProperty = static_cast<int>(i);
+        }
+    }
+    if (!vertexElement)
+        fail(file, ": no 'vertex' element");
+    if (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0)
+        fail(file, ": 'vertex' element lacks scalar x, y and z properties");
+    if (faceElement && indexProperty < 0)
+        fail(file, ": 'face' element lacks a vertex_indices list");
+
+    Mesh mesh;
+    mesh.V.resize(vertexElement->count, 3);
+    std::vector<std::array<std::int32_t, 3>> triangles;
+    const long vertexCount = vertexElement->count;
+    BinaryReader binary(in, format, file);
+
+    for (const Element& e : elements) {
+        const bool isVertex = &e == vertexElement, isFace = &e == faceElement;
+        for (long k = 0; k < e.count; ++k) {
+            std::vector<double> scalars(e.properties.size(), 0.0);
+            std::vector<long> indices;
+            std::istringstream words;
+            std::string where;
+            if (format == Format::Ascii) {
+                if (!nextLine())
+                    fail(file, ":", line + 1, ": file ends at ", e.name, " ", k, " of ", e.count, " (truncated?)");
+                words.str(text);
+                where = cat(file, ":", line, ": ");
+            } else {
+                where = cat(file, ": ");
+            }
+            auto readValue = [&](const std::string& type, const std::string& what) -> double {
+                if (format != Format::Ascii)
+                    return binary.read(type, cat(e.name, " ", k, " ", what));
+                std::string token;
+                if (!(words >> token))
+                    fail(where, e.name, " ", k, " has too few values (missing ", what, ")");
+                char* end = nullptr;
+                const double value = std::strtod(token.c_str(), &end);
+                if (*end != '\0')
+                    fail(where, e.name, " ", k, ": ", what, " '", token, "' is not a number");
+                return value;
+            };
+            for (size_t i = 0; i < e.properties.size(); ++i) {
+                const Property& p = e.properties[i];
+                if (p.countType.empty()) {
+                    scalars[i] = readValue(p.type, p.name);
+                    continue;
+                }
+                const double n = readValue(p.countType, p.name + " count");
+                if (n < 0 || n != std::floor(n) || n > 1e6)
+                    fail(where, e.name, " ", k, ": list length ", n, " is invalid");
+                for (long j = 0; j < static_cast<long>(n); ++j) {
+                    const double value = readValue(p.type, p.name);
+                    if (isFace && static_cast<int>(i) == indexProperty)
+                        indices.push_back(static_cast<long>(value));
+                }
+            }
+            if (isVertex) {
+                for (int c = 0; c < 3; ++c) {
+                    const double value = scalars[xyz[c]];
+                    if (!std::isfinite(value))
+                        fail(where, "vertex ", k, " has non-finite ", "xyz"[c], " = ", value);
+                    mesh.V(k, c) = value;
+                }
+            } else if (isFace) {
+                if (indices.size() < 3)
+                    fail(where, "face ", k, " has ", indices.size(), " vertices, at least 3 needed");
+                for (const long index : indices)
+                    if (index < 0 || index >= vertexCount)
+                        fail(where, "face ", k, " has vertex index ", index, " outside [0, ", vertexCount, ")");
+                for (size_t j = 1; j + 1 < indices.size(); ++j)
+                    triangles.push_back({static_cast<std::int32_t>(indices[0]), static_cast<std::int32_t>(indices[j]),
+                                         static_cast<std::int32_t>(indices[j + 1])});
+            }
+            std::string extra;
+            if (format == Format::Ascii && words >> extra)
+                fail(where, e.name, " ", k, " has more values than its ", e.properties.size(), " properties");
+        }
+    }
+
+    mesh.F.resize(static_cast<Eigen::Index>(triangles.size()), 3);
+    for (size_t t = 0; t < triangles.size(); ++t)
+        mesh.F.row(static_cast<Eigen::Index>(t)) << triangles[t][0], triangles[t][1], triangles[t][2];
+    validateMesh(mesh, file);
+    return mesh;
+}
+
+void writePly(const std::filesystem::path& path, const Mesh& mesh, PlyEncoding encoding)
+{
+    validateMesh(mesh, path.string());
+    const bool ascii = encoding == PlyEncoding::Ascii;
+    writeFileAtomically(path, [&](std::ostream& out) {
+        out << "ply\nformat " << (ascii ? "ascii" : "binary_little_endian") << " 1.0\n"
+            << "comment FaceSketch mesh\n"
+            << "element vertex " << mesh.V.rows() << "\nproperty float x\nproperty float y\nproperty float z\n"
+            << "element face " << mesh.F.rows() << "\nproperty list uchar int vertex_indices\nend_header\n";
+        if (ascii) {
+            out.precision(9);
+            for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
+                out << static_cast<float>(mesh.V(v, 0)) << ' ' << static_cast<float>(mesh.V(v, 1)) << ' ' << static_cast<float>(mesh.V(v, 2)) << '\n';
+            for (Eigen::Index t = 0; t < mesh.F.rows(); ++t)
+                out << "3 " << mesh.F(t, 0) << ' ' << mesh.F(t, 1) << ' ' << mesh.F(t, 2) << '\n';
+            return;
+        }
+        static_assert(std::endian::native == std::endian::little, "the binary PLY writer assumes a little-endian host");
+        std::vector<float> xyz(static_cast<size_t>(mesh.V.rows()) * 3);
+        for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
+            for (int c = 0; c < 3; ++c)
+                xyz[3 * v + c] = static_cast<float>(mesh.V(v, c));
+        out.write(reinterpret_cast<const char*>(xyz.data()), static_cast<std::streamsize>(xyz.size() * sizeof(float)));
+        std::vector<char> faces(static_cast<size_t>(mesh.F.rows()) * 13);
+        for (Eigen::Index t = 0; t < mesh.F.rows(); ++t) {
+            faces[13 * t] = 3;
+            std::memcpy(&faces[13 * t + 1], &mesh.F(t, 0), 12);
+        }
+        out.write(faces.data(), static_cast<std::streamsize>(faces.size()));
+    });
+}
+
+} // namespace facesketch

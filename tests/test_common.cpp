@@ -1,0 +1,46 @@
+#include "test_common.h"
+
+#include <fstream>
+#include <random>
+
+namespace facesketch::test {
+
+namespace {
+struct DeviceHolder {
+    gpu::Device device;
+    DeviceHolder() : device(gpu::createDevice({.validation = true, .requireValidation = true})) {}
+    ~DeviceHolder() { gpu::destroyDevice(device); }
+};
+} // namespace
+
+std::uint64_t& validationBaseline()
+{
+    static std::uint64_t baseline = 0;
+    return baseline;
+}
+
+gpu::Device& device()
+{
+    static DeviceHolder holder;
+    return holder.device;
+}
+
+TempDir::TempDir()
+{
+    std::random_device seed;
+    path_ = std::filesystem::temp_directory_path() / ("facesketch-test-" + std::to_string(seed()) + std::to_string(seed()));
+    std::filesystem::create_directories(path_);
+}
+
+TempDir::~TempDir()
+{
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+}
+
+void writeText(const std::filesystem::path& path, const std::string& text)
+{
+    std::ofstream(path, std::ios::binary) << text;
+}
+
+} // namespace facesketch::test

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds and runs every test on lavapipe with Vulkan validation on.
+#   tools/test.sh             release build (RelWithDebInfo) in build/
+#   tools/test.sh --sanitize  AddressSanitizer + UndefinedBehaviorSanitizer build in build-asan/
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+mode=release
+[ "${1:-}" = "--sanitize" ] && mode=sanitize
+
+bash tools/setup-debian.sh
+jobs=$(nproc)
+
+if [ "$mode" = sanitize ]; then
+  dir=build-asan
+  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
+        -DFACESKETCH_SANITIZE=ON -DFACESKETCH_WERROR=ON
+  # Mesa's drivers and the validation layer keep process-lifetime allocations that LeakSanitizer
+  # would report; everything else (ours) must be leak-free.
+  export LSAN_OPTIONS="suppressions=$PWD/tools/lsan.supp:print_suppressions=0"
+  export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
+  export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+else
+  dir=build
+  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFACESKETCH_WERROR=ON
+fi
+cmake --build "$dir" -j"$jobs"
+ctest --test-dir "$dir" --output-on-failure -j"$jobs"
