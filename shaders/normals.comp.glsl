@@ -2,11 +2,11 @@
 #extension GL_GOOGLE_include_directive : require
 // Area-weighted vertex normals: n(v) = normalize(sum over triangles t at v of cross(b - v, c - v)),
 // where (v, b, c) is t in its winding order; |cross| is twice t's area, hence the area weight.
-// One invocation per (vertex, mesh); a gather over the vertex's wedges, so no atomics and the
-// result does not depend on scheduling. Zero-area neighbourhoods give a zero normal.
+// One invocation per (mesh, vertex), meshes along x: a gather over the vertex's wedges, so no
+// atomics and a result independent of scheduling. Zero-area neighbourhoods give a zero normal.
 #include "shared.h"
 
-layout(local_size_x = NORMALS_GROUP_SIZE, local_size_y = 1, local_size_z = 1) in;
+layout(local_size_x = BATCH_GROUP_MESHES, local_size_y = BATCH_GROUP_VERTICES, local_size_z = 1) in;
 
 layout(binding = NORMALS_BINDING_POSITIONS, std430) readonly buffer Positions { float positions[]; };
 layout(binding = NORMALS_BINDING_WEDGE_OFFSETS, std430) readonly buffer WedgeOffsets { uint wedgeOffsets[]; };
@@ -18,29 +18,31 @@ layout(push_constant) uniform Constants {
     uint meshCount;
 };
 
-vec3 position(uint base, uint v)
+vec3 position(uint v, uint mesh)
 {
-    uint i = base + 3 * v;
-    return vec3(positions[i], positions[i + 1], positions[i + 2]);
+    uint i = 3 * v * meshCount + mesh;
+    return vec3(positions[i], positions[i + meshCount], positions[i + 2 * meshCount]);
 }
 
 void main()
 {
-    uint v = gl_GlobalInvocationID.x;
-    uint mesh = gl_GlobalInvocationID.y;
-    if (v >= vertexCount || mesh >= meshCount)
+    uint mesh = gl_GlobalInvocationID.x;
+    if (mesh >= meshCount)
         return;
-    uint base = mesh * vertexCount * 3;
-    vec3 p = position(base, v);
-    vec3 sum = vec3(0.0);
-    for (uint w = wedgeOffsets[v]; w < wedgeOffsets[v + 1]; ++w) {
-        uvec2 bc = wedges[w];
-        sum += cross(position(base, bc.x) - p, position(base, bc.y) - p);
+    // Vertices beyond the dispatch's y extent (at most 65535 groups) are covered by striding.
+    uint stride = gl_NumWorkGroups.y * gl_WorkGroupSize.y;
+    for (uint v = gl_GlobalInvocationID.y; v < vertexCount; v += stride) {
+        vec3 p = position(v, mesh);
+        vec3 sum = vec3(0.0);
+        for (uint w = wedgeOffsets[v]; w < wedgeOffsets[v + 1]; ++w) {
+            uvec2 bc = wedges[w];
+            sum += cross(position(bc.x, mesh) - p, position(bc.y, mesh) - p);
+        }
+        float len = length(sum);
+        vec3 n = len > 0.0 ? sum / len : vec3(0.0);
+        uint o = 3 * v * meshCount + mesh;
+        normals[o] = n.x;
+        normals[o + meshCount] = n.y;
+        normals[o + 2 * meshCount] = n.z;
     }
-    float len = length(sum);
-    vec3 n = len > 0.0 ? sum / len : vec3(0.0);
-    uint o = base + 3 * v;
-    normals[o] = n.x;
-    normals[o + 1] = n.y;
-    normals[o + 2] = n.z;
 }

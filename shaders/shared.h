@@ -3,12 +3,18 @@
 #ifndef FACESKETCH_SHADERS_SHARED_H
 #define FACESKETCH_SHADERS_SHARED_H
 
+// Batched per-vertex data of many meshes with one topology is stored mesh-minor ("batch
+// layout"): element (vertex v, coordinate c, mesh m) at (v * 3 + c) * meshCount + m. Neighbouring
+// invocations then work on the same vertex of neighbouring meshes: the topology reads and the
+// loop trip counts are uniform and the position reads are contiguous.
+#define BATCH_GROUP_MESHES 8    // invocations along meshes (x); one SIMD row on lavapipe
+#define BATCH_GROUP_VERTICES 8  // invocations along vertices (y)
+
 // normals.comp: area-weighted vertex normals for a batch of meshes sharing one topology.
-#define NORMALS_GROUP_SIZE 64
-#define NORMALS_BINDING_POSITIONS 0   // float[mesh][vertex][3]
+#define NORMALS_BINDING_POSITIONS 0     // float, batch layout
 #define NORMALS_BINDING_WEDGE_OFFSETS 1 // uint[vertexCount + 1], CSR offsets into wedges
-#define NORMALS_BINDING_WEDGES 2      // uvec2[]: the other two corners of each incident triangle, in winding order
-#define NORMALS_BINDING_NORMALS 3     // float[mesh][vertex][3], unit length or zero
+#define NORMALS_BINDING_WEDGES 2        // uvec2[]: the other two corners of each incident triangle, in winding order
+#define NORMALS_BINDING_NORMALS 3       // float, batch layout; unit length or zero
 
 // mesh.vert / mesh.frag: one vertex layout and one pipeline layout for triangles, lines, points.
 #define DRAW_MODE_LIT 0     // Lambert + specular from a head light, two-sided

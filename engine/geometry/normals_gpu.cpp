@@ -1,10 +1,12 @@
 #include "geometry/normals_gpu.h"
 
 #include "core/error.h"
+#include "geometry/mesh_batch.h"
 #include "geometry/wedges.h"
 #include "shaders/normals_comp.h"
 #include "shaders/shared.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace facesketch {
@@ -61,8 +63,9 @@ void GpuNormals::setPositions(const std::vector<float>& positions)
         positions_ = gpu::createBuffer(device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
         normals_ = gpu::createBuffer(device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     }
-    gpu::uploadBuffer(device_, positions_, positions.data(), bytes);
     meshCount_ = static_cast<std::uint32_t>(positions.size() / stride);
+    const std::vector<float> batch = toBatchLayout(positions, meshCount_, static_cast<size_t>(vertexCount_));
+    gpu::uploadBuffer(device_, positions_, batch.data(), bytes);
 }
 
 double GpuNormals::run()
@@ -72,7 +75,9 @@ double GpuNormals::run()
     const NormalsConstants constants{static_cast<std::uint32_t>(vertexCount_), meshCount_};
     gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
         gpu::timerStart(cmd, timer_);
-        gpu::dispatch(device_, cmd, program_, constants.vertexCount, constants.meshCount, 1,
+        // Meshes along x, vertices along y; the shader strides over vertices past 65535 groups.
+        const auto rows = std::min<std::uint32_t>(constants.vertexCount, 65535u * program_.localSize[1]);
+        gpu::dispatch(device_, cmd, program_, constants.meshCount, rows, 1,
                       {&positions_, &wedgeOffsets_, &wedges_, &normals_}, constants);
         gpu::hostReadBarrier(cmd);
         gpu::timerEnd(cmd, timer_);
@@ -82,9 +87,9 @@ double GpuNormals::run()
 
 std::vector<float> GpuNormals::normals()
 {
-    std::vector<float> out(static_cast<size_t>(meshCount_) * vertexCount_ * 3);
-    gpu::readbackBuffer(device_, normals_, out.data(), out.size() * sizeof(float));
-    return out;
+    std::vector<float> batch(static_cast<size_t>(meshCount_) * vertexCount_ * 3);
+    gpu::readbackBuffer(device_, normals_, batch.data(), batch.size() * sizeof(float));
+    return fromBatchLayout(batch, meshCount_, static_cast<size_t>(vertexCount_));
 }
 
 std::vector<float> vertexNormalsGpu(gpu::Device& device, const std::vector<float>& positions, const Triangles& F,

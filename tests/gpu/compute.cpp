@@ -10,8 +10,8 @@ TEST_CASE("compute: the workgroup size is read from the SPIR-V")
 {
     std::uint32_t size[3] = {};
     gpu::readLocalSize(gpu::shaderCode(normals_comp), size);
-    REQUIRE(size[0] == NORMALS_GROUP_SIZE);
-    REQUIRE(size[1] == 1);
+    REQUIRE(size[0] == BATCH_GROUP_MESHES);
+    REQUIRE(size[1] == BATCH_GROUP_VERTICES);
     REQUIRE(size[2] == 1);
 }
 
