@@ -8,10 +8,10 @@
 
 layout(local_size_x = BATCH_GROUP_MESHES, local_size_y = BATCH_GROUP_VERTICES, local_size_z = 1) in;
 
-layout(binding = NORMALS_BINDING_POSITIONS, std430) readonly buffer Positions { float positions[]; };
+layout(binding = NORMALS_BINDING_POSITIONS, std430) readonly buffer Positions { vec4 positions[]; };
 layout(binding = NORMALS_BINDING_WEDGE_OFFSETS, std430) readonly buffer WedgeOffsets { uint wedgeOffsets[]; };
 layout(binding = NORMALS_BINDING_WEDGES, std430) readonly buffer Wedges { uvec2 wedges[]; };
-layout(binding = NORMALS_BINDING_NORMALS, std430) writeonly buffer Normals { float normals[]; };
+layout(binding = NORMALS_BINDING_NORMALS, std430) writeonly buffer Normals { vec4 normals[]; };
 
 layout(push_constant) uniform Constants {
     uint vertexCount;
@@ -20,8 +20,7 @@ layout(push_constant) uniform Constants {
 
 vec3 position(uint v, uint mesh)
 {
-    uint i = 3 * v * meshCount + mesh;
-    return vec3(positions[i], positions[i + meshCount], positions[i + 2 * meshCount]);
+    return positions[v * meshCount + mesh].xyz;
 }
 
 void main()
@@ -40,9 +39,6 @@ void main()
         }
         float len = length(sum);
         vec3 n = len > 0.0 ? sum / len : vec3(0.0);
-        uint o = 3 * v * meshCount + mesh;
-        normals[o] = n.x;
-        normals[o + meshCount] = n.y;
-        normals[o + 2 * meshCount] = n.z;
+        normals[v * meshCount + mesh] = vec4(n, 0.0);
     }
 }

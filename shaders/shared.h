@@ -3,10 +3,10 @@
 #ifndef FACESKETCH_SHADERS_SHARED_H
 #define FACESKETCH_SHADERS_SHARED_H
 
-// Batched per-vertex data of many meshes with one topology is stored mesh-minor ("batch
-// layout"): element (vertex v, coordinate c, mesh m) at (v * 3 + c) * meshCount + m. Neighbouring
+// Batched per-vertex vectors of many meshes with one topology are stored mesh-minor as vec4
+// ("batch layout"): vertex v of mesh m at index v * meshCount + m, w unused. Neighbouring
 // invocations then work on the same vertex of neighbouring meshes: the topology reads and the
-// loop trip counts are uniform and the position reads are contiguous.
+// loop trip counts are uniform, and each position is one 16-byte load.
 #define BATCH_GROUP_MESHES 8    // invocations along meshes (x); one SIMD row on lavapipe
 #define BATCH_GROUP_VERTICES 8  // invocations along vertices (y)
 

@@ -5,32 +5,33 @@
 namespace facesketch {
 
 namespace {
-void checkSize(const std::vector<float>& data, std::size_t meshCount, std::size_t vertexCount, const char* what)
+void checkSize(const std::vector<float>& data, std::size_t meshCount, std::size_t vertexCount, std::size_t floatsPerVertex,
+               const char* what)
 {
-    if (data.size() != meshCount * vertexCount * 3)
-        fail(what, ": ", data.size(), " floats, expected ", meshCount, " meshes x ", vertexCount, " vertices x 3");
+    if (data.size() != meshCount * vertexCount * floatsPerVertex)
+        fail(what, ": ", data.size(), " floats, expected ", meshCount, " meshes x ", vertexCount, " vertices x ", floatsPerVertex);
 }
 } // namespace
 
 std::vector<float> toBatchLayout(const std::vector<float>& meshMajor, std::size_t meshCount, std::size_t vertexCount)
 {
-    checkSize(meshMajor, meshCount, vertexCount, "toBatchLayout");
-    std::vector<float> batch(meshMajor.size());
-    const std::size_t rows = vertexCount * 3;
+    checkSize(meshMajor, meshCount, vertexCount, 3, "toBatchLayout");
+    std::vector<float> batch(meshCount * vertexCount * 4, 0.0f);
     for (std::size_t m = 0; m < meshCount; ++m)
-        for (std::size_t r = 0; r < rows; ++r)
-            batch[r * meshCount + m] = meshMajor[m * rows + r];
+        for (std::size_t v = 0; v < vertexCount; ++v)
+            for (std::size_t c = 0; c < 3; ++c)
+                batch[4 * (v * meshCount + m) + c] = meshMajor[3 * (m * vertexCount + v) + c];
     return batch;
 }
 
 std::vector<float> fromBatchLayout(const std::vector<float>& batch, std::size_t meshCount, std::size_t vertexCount)
 {
-    checkSize(batch, meshCount, vertexCount, "fromBatchLayout");
-    std::vector<float> meshMajor(batch.size());
-    const std::size_t rows = vertexCount * 3;
-    for (std::size_t r = 0; r < rows; ++r)
+    checkSize(batch, meshCount, vertexCount, 4, "fromBatchLayout");
+    std::vector<float> meshMajor(meshCount * vertexCount * 3);
+    for (std::size_t v = 0; v < vertexCount; ++v)
         for (std::size_t m = 0; m < meshCount; ++m)
-            meshMajor[m * rows + r] = batch[r * meshCount + m];
+            for (std::size_t c = 0; c < 3; ++c)
+                meshMajor[3 * (m * vertexCount + v) + c] = batch[4 * (v * meshCount + m) + c];
     return meshMajor;
 }
 

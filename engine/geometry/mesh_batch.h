@@ -1,6 +1,7 @@
 #pragma once
 // Per-vertex xyz data of many meshes with one topology, in the GPU's "batch layout"
-// (shaders/shared.h): element (vertex v, coordinate c, mesh m) at (v * 3 + c) * meshCount + m.
+// (shaders/shared.h): vertex v of mesh m as 4 floats (x, y, z, 0) at float index
+// 4 * (v * meshCount + m).
 // Host code mostly holds mesh-major arrays (mesh, then vertex, then xyz); these functions
 // convert between the two.
 
@@ -9,7 +10,7 @@
 
 namespace facesketch {
 
-/// Mesh-major (meshCount * vertexCount * 3 floats) to batch layout. Throws Error if the size
+/// Mesh-major (meshCount * vertexCount * 3 floats) to batch layout (4 floats per vertex). Throws Error if the size
 /// does not match.
 std::vector<float> toBatchLayout(const std::vector<float>& meshMajor, std::size_t meshCount, std::size_t vertexCount);
 /// Batch layout back to mesh-major.

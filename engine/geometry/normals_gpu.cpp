@@ -53,7 +53,7 @@ void GpuNormals::setPositions(const std::vector<float>& positions)
     for (size_t i = 0; i < positions.size(); ++i)
         if (!std::isfinite(positions[i]))
             fail("GpuNormals: mesh ", i / stride, " vertex ", (i % stride) / 3, " has non-finite coordinate ", positions[i]);
-    const VkDeviceSize bytes = positions.size() * sizeof(float);
+    const VkDeviceSize bytes = positions.size() / 3 * 4 * sizeof(float);
     if (!positions_.buffer || positions_.size < bytes) {
         vkDeviceWaitIdle(device_.device);
         if (positions_.buffer) {
@@ -87,7 +87,7 @@ double GpuNormals::run()
 
 std::vector<float> GpuNormals::normals()
 {
-    std::vector<float> batch(static_cast<size_t>(meshCount_) * vertexCount_ * 3);
+    std::vector<float> batch(static_cast<size_t>(meshCount_) * vertexCount_ * 4);
     gpu::readbackBuffer(device_, normals_, batch.data(), batch.size() * sizeof(float));
     return fromBatchLayout(batch, meshCount_, static_cast<size_t>(vertexCount_));
 }
