@@ -1,0 +1,21 @@
+# Writes a tetrahedron OBJ, renders it, and checks the PNG's signature and that the command
+# reported success. Run by ctest with -DFACESKETCH=<exe> -DWORK=<dir>.
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK})
+file(WRITE ${WORK}/tet.obj "v 0 0 0\nv 10 0 0\nv 0 10 0\nv 0 0 10\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+execute_process(COMMAND ${FACESKETCH} render ${WORK}/tet.obj -o ${WORK}/tet.png --view 30,20 --width 64 --height 48
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "render failed (${rc}): ${out} ${err}")
+endif()
+if(err MATCHES "validation")
+  message(FATAL_ERROR "validation messages: ${err}")
+endif()
+file(READ ${WORK}/tet.png signature LIMIT 8 HEX)
+if(NOT signature STREQUAL "89504e470d0a1a0a")
+  message(FATAL_ERROR "tet.png is not a PNG (signature ${signature})")
+endif()
+file(READ ${WORK}/tet.png header OFFSET 16 LIMIT 8 HEX)
+if(NOT header STREQUAL "0000004000000030")
+  message(FATAL_ERROR "tet.png is not 64x48 (IHDR size ${header})")
+endif()
