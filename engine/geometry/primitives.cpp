@@ -52,9 +52,47 @@ Mesh makeIcosphere(double radius, int subdivisions)
     return m;
 }
 
-} // namespace facesketch
+Mesh makeTorus(double R, double r, int ringSegments, int tubeSegments)
+{
+    if (!(r > 0) || !(R > r) || ringSegments < 3 || tubeSegments < 3)
+        fail("makeTorus: need 0 < r < R and at least 3 segments (got R ", R, ", r ", r, ", ", ringSegments, "x", tubeSegments, ")");
+    Mesh m;
+    m.V.resize(static_cast<Eigen::Index>(ringSegments) * tubeSegments, 3);
+    m.F.resize(2 * static_cast<Eigen::Index>(ringSegments) * tubeSegments, 3);
+    Eigen::Index t = 0;
+    for (int i = 0; i < ringSegments; ++i)
+        for (int j = 0; j < tubeSegments; ++j) {
+            const double u = 2 * M_PI * i / ringSegments, v = 2 * M_PI * j / tubeSegments;
+            m.V.row(i * tubeSegments + j) << (R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v);
+            const int a = i * tubeSegments + j, b = ((i + 1) % ringSegments) * tubeSegments + j;
+            const int c = ((i + 1) % ringSegments) * tubeSegments + (j + 1) % tubeSegments, d = i * tubeSegments + (j + 1) % tubeSegments;
+            m.F.row(t++) << a, b, c;
+            m.F.row(t++) << a, c, d;
+        }
+    return m;
+}
 
-namespace facesketch {
+Mesh makeCylinder(double radius, double length, int segments, int rings)
+{
+    if (!(radius > 0) || !(length > 0) || segments < 3 || rings < 1)
+        fail("makeCylinder: need a positive size, 3 segments and 1 ring (got ", radius, ", ", length, ", ", segments, ", ", rings, ")");
+    Mesh m;
+    m.V.resize(static_cast<Eigen::Index>(segments) * (rings + 1), 3);
+    m.F.resize(2 * static_cast<Eigen::Index>(segments) * rings, 3);
+    for (int k = 0; k <= rings; ++k)
+        for (int i = 0; i < segments; ++i) {
+            const double a = 2 * M_PI * i / segments;
+            m.V.row(k * segments + i) << radius * std::cos(a), radius * std::sin(a), length * k / rings;
+        }
+    Eigen::Index t = 0;
+    for (int k = 0; k < rings; ++k)
+        for (int i = 0; i < segments; ++i) {
+            const int a = k * segments + i, b = k * segments + (i + 1) % segments, c = b + segments, d = a + segments;
+            m.F.row(t++) << a, b, c;
+            m.F.row(t++) << a, c, d;
+        }
+    return m;
+}
 
 Mesh makeGrid(int nx, int ny, double width, double height)
 {

@@ -10,9 +10,16 @@ namespace facesketch {
 /// triangles counter-clockwise seen from outside.
 Mesh makeIcosphere(double radius, int subdivisions);
 
-} // namespace facesketch
+/// A torus about the z axis: tube centre radius R, tube radius r < R; ringSegments around z,
+/// tubeSegments around the tube. Vertex (i, j) at ring angle 2 pi i / ringSegments and tube
+/// angle v = 2 pi j / tubeSegments is ((R + r cos v) cos u, (R + r cos v) sin u, r sin v).
+/// Closed. Principal curvatures (outward normals, convex positive): 1/r around the tube and
+/// cos v / (R + r cos v) around z.
+Mesh makeTorus(double R, double r, int ringSegments, int tubeSegments);
 
-namespace facesketch {
+/// An open cylinder of `radius` about the z axis from z = 0 to z = length, `segments` around
+/// and `rings` + 1 vertex rings along z. Curvatures: 1/radius and 0.
+Mesh makeCylinder(double radius, double length, int segments, int rings);
 
 /// A rectangular height-field patch: nx by ny vertices over [-width/2, width/2] x
 /// [-height/2, height/2] in the xy plane at z = 0, two triangles per cell, counter-clockwise
