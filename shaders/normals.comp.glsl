@@ -1,7 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Area-weighted vertex normals: n(v) = normalize(sum over triangles t at v of cross(b - v, c - v)),
-// where (v, b, c) is t in its winding order; |cross| is twice t's area, hence the area weight.
+// Vertex normals: n(v) = normalize(sum over triangles t at v of w_t cross(b - v, c - v)), where
+// (v, b, c) is t in its winding order. |cross| is twice t's area, so w_t = 1 weights by area
+// (NORMALS_WEIGHT_AREA); w_t = 1 / (|b - v|^2 |c - v|^2) is Max 1999 (NORMALS_WEIGHT_MAX).
 // One invocation per (mesh, vertex), meshes along x: a gather over the vertex's wedges, so no
 // atomics and a result independent of scheduling. Zero-area neighbourhoods give a zero normal.
 #include "shared.h"
@@ -16,6 +17,7 @@ layout(binding = NORMALS_BINDING_NORMALS, std430) writeonly buffer Normals { vec
 layout(push_constant) uniform Constants {
     uint vertexCount;
     uint meshCount;
+    uint weighting; // NORMALS_WEIGHT_*
 };
 
 vec3 position(uint v, uint mesh)
@@ -35,7 +37,13 @@ void main()
         vec3 sum = vec3(0.0);
         for (uint w = wedgeOffsets[v]; w < wedgeOffsets[v + 1]; ++w) {
             uvec2 bc = wedges[w];
-            sum += cross(position(bc.x, mesh) - p, position(bc.y, mesh) - p);
+            vec3 a = position(bc.x, mesh) - p, b = position(bc.y, mesh) - p;
+            float weight = 1.0;
+            if (weighting == NORMALS_WEIGHT_MAX) {
+                float l2 = dot(a, a) * dot(b, b);
+                weight = l2 > 0.0 ? 1.0 / l2 : 0.0;
+            }
+            sum += weight * cross(a, b);
         }
         float len = length(sum);
         vec3 n = len > 0.0 ? sum / len : vec3(0.0);

@@ -15,6 +15,25 @@
 #define NORMALS_BINDING_WEDGE_OFFSETS 1 // uint[vertexCount + 1], CSR offsets into wedges
 #define NORMALS_BINDING_WEDGES 2        // uvec2[]: the other two corners of each incident triangle, in winding order
 #define NORMALS_BINDING_NORMALS 3       // float, batch layout; unit length or zero
+#define NORMALS_WEIGHT_AREA 0           // each triangle weighted by its area
+#define NORMALS_WEIGHT_MAX 1            // Max 1999: each corner by 1 / (|e1|^2 |e2|^2), exact on spheres
+
+// curvature.comp: principal curvatures and directions (Rusinkiewicz 2004), batch layout.
+#define CURVATURE_BINDING_POSITIONS 0
+#define CURVATURE_BINDING_WEDGE_OFFSETS 1
+#define CURVATURE_BINDING_WEDGES 2
+#define CURVATURE_BINDING_NORMALS 3     // Max-weighted normals (normals.comp, NORMALS_WEIGHT_MAX)
+#define CURVATURE_BINDING_CURVATURE 4   // out: k1, k2 (1/mm, k1 >= k2, convex positive), Voronoi area, 0
+#define CURVATURE_BINDING_DIRECTIONS 5  // out: dir1 (unit, tangent), 0; dir2 = normal x dir1
+
+// curvature_derivative.comp: derivative of curvature, after curvature.comp.
+#define DCURV_BINDING_POSITIONS 0
+#define DCURV_BINDING_WEDGE_OFFSETS 1
+#define DCURV_BINDING_WEDGES 2
+#define DCURV_BINDING_NORMALS 3
+#define DCURV_BINDING_CURVATURE 4
+#define DCURV_BINDING_DIRECTIONS 5
+#define DCURV_BINDING_DERIVATIVE 6      // out: C111, C112, C122, C222 in the (dir1, dir2) frame
 
 // mesh.vert / mesh.frag: one vertex layout and one pipeline layout for triangles, lines, points.
 #define DRAW_MODE_LIT 0     // Lambert + specular from a head light, two-sided

@@ -15,6 +15,7 @@ namespace {
 struct alignas(16) NormalsConstants {
     std::uint32_t vertexCount;
     std::uint32_t meshCount;
+    std::uint32_t weighting;
 };
 } // namespace
 
@@ -72,7 +73,7 @@ double GpuNormals::run()
 {
     if (meshCount_ == 0)
         fail("GpuNormals::run: no positions set");
-    const NormalsConstants constants{static_cast<std::uint32_t>(vertexCount_), meshCount_};
+    const NormalsConstants constants{static_cast<std::uint32_t>(vertexCount_), meshCount_, NORMALS_WEIGHT_AREA};
     gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
         gpu::timerStart(cmd, timer_);
         // Meshes along x, vertices along y; the shader strides over vertices past 65535 groups.

@@ -1,0 +1,67 @@
+#pragma once
+// Curvature of every face of a dataset at once on the GPU: Max-weighted normals, principal
+// curvatures and directions, and the derivative of curvature (Rusinkiewicz 2004), for a batch
+// of meshes sharing one triangle list. The one-time pass of thesis 4.3.4 ("caching curvature
+// files"): run once per dataset, its buffers stay on the GPU for every later view.
+// CPU reference: contours/curvature.h, same conventions (convex positive, k1 >= k2).
+//
+//   GpuCurvature curvature(device, F, vertexCount);
+//   curvature.setPositions(positions);   // meshCount * #V * 3 floats, mesh-major
+//   curvature.run();                      // three dispatches, waits
+//   GpuCurvature::Result r = curvature.download();
+
+#include "core/mesh.h"
+#include "gpu/buffers.h"
+#include "gpu/compute.h"
+#include "gpu/timer.h"
+
+#include <vector>
+
+namespace facesketch {
+
+class GpuCurvature {
+public:
+    GpuCurvature(gpu::Device& device, const Triangles& F, Eigen::Index vertexCount);
+    ~GpuCurvature();
+    GpuCurvature(const GpuCurvature&) = delete;
+    GpuCurvature& operator=(const GpuCurvature&) = delete;
+
+    /// Uploads meshCount meshes; throws Error on a partial mesh or a non-finite coordinate.
+    void setPositions(const std::vector<float>& positions);
+    /// Normals, curvature and its derivative for every mesh; returns GPU milliseconds (or -1).
+    double run();
+
+    /// Host copies, mesh-major: element (mesh m, vertex v) at m * #V + v.
+    struct Result {
+        std::vector<float> normal;     ///< xyz per vertex
+        std::vector<float> curvature;  ///< k1, k2, area, 0 per vertex
+        std::vector<float> direction;  ///< dir1 xyz per vertex (dir2 = normal x dir1)
+        std::vector<float> derivative; ///< C111, C112, C122, C222 per vertex
+    };
+    Result download();
+
+    std::uint32_t meshCount() const { return meshCount_; }
+    Eigen::Index vertexCount() const { return vertexCount_; }
+
+    // For kernels that consume the results (contour tests): batch layout, see shaders/shared.h.
+    const gpu::Buffer& positions() const { return positions_; }
+    const gpu::Buffer& normals() const { return normals_; }
+    const gpu::Buffer& curvatures() const { return curvature_; }
+    const gpu::Buffer& directions() const { return directions_; }
+    const gpu::Buffer& derivatives() const { return derivatives_; }
+    const gpu::Buffer& wedgeOffsets() const { return wedgeOffsets_; }
+    const gpu::Buffer& wedges() const { return wedges_; }
+
+private:
+    void destroyBatchBuffers();
+
+    gpu::Device& device_;
+    Eigen::Index vertexCount_;
+    std::uint32_t meshCount_ = 0;
+    gpu::ComputeProgram normalsProgram_, curvatureProgram_, derivativeProgram_;
+    gpu::Buffer wedgeOffsets_, wedges_;
+    gpu::Buffer positions_, normals_, curvature_, directions_, derivatives_;
+    gpu::GpuTimer timer_;
+};
+
+} // namespace facesketch

@@ -1,0 +1,131 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Derivative of curvature per vertex (Rusinkiewicz 2004), for a batch of meshes, after
+// curvature.comp. One invocation per (mesh, vertex) gathers over the vertex's triangles: the
+// three corners' curvature tensors are read in the triangle's frame, the symmetric 3-tensor C
+// is fitted to their differences along the edges (4x4 least squares), read in the vertex's
+// principal frame and weighted by the Voronoi corner area. Output (C111, C112, C122, C222) in
+// the (dir1, dir2) frame. CPU reference: engine/contours/curvature.cpp.
+#include "shared.h"
+
+layout(local_size_x = BATCH_GROUP_MESHES, local_size_y = BATCH_GROUP_VERTICES, local_size_z = 1) in;
+
+layout(binding = DCURV_BINDING_POSITIONS, std430) readonly buffer Positions { vec4 positions[]; };
+layout(binding = DCURV_BINDING_WEDGE_OFFSETS, std430) readonly buffer WedgeOffsets { uint wedgeOffsets[]; };
+layout(binding = DCURV_BINDING_WEDGES, std430) readonly buffer Wedges { uvec2 wedges[]; };
+layout(binding = DCURV_BINDING_NORMALS, std430) readonly buffer Normals { vec4 normals[]; };
+layout(binding = DCURV_BINDING_CURVATURE, std430) readonly buffer Curvatures { vec4 curvatures[]; };
+layout(binding = DCURV_BINDING_DIRECTIONS, std430) readonly buffer Directions { vec4 directions[]; };
+layout(binding = DCURV_BINDING_DERIVATIVE, std430) writeonly buffer Derivatives { vec4 derivatives[]; };
+
+layout(push_constant) uniform Constants {
+    uint vertexCount;
+    uint meshCount;
+};
+
+#include "curvature_common.glsl"
+
+// The curvature tensor of vertex `v` read in the frame (t, b).
+vec3 vertexTensorIn(uint v, vec3 t, vec3 b)
+{
+    uint index = v * meshCount + gl_GlobalInvocationID.x;
+    vec3 n = normals[index].xyz;
+    vec3 d1 = directions[index].xyz;
+    vec4 k = curvatures[index];
+    return projectTensor(d1, cross(n, d1), vec3(k.x, 0.0, k.y), t, b);
+}
+
+// The symmetric 3-tensor c = (C111, C112, C122, C222) in frame (u, v), read in frame (ru, rv).
+vec4 projectDerivative(vec3 u, vec3 v, vec4 c, vec3 ru, vec3 rv)
+{
+    rotateFrame(u, v, cross(ru, rv));
+    vec2 x = vec2(dot(ru, u), dot(ru, v)), y = vec2(dot(rv, u), dot(rv, v));
+    // C(p, p, p), C(p, p, q), C(p, q, q), C(q, q, q) for the symmetric tensor.
+    return vec4(c.x * x.x * x.x * x.x + 3.0 * c.y * x.x * x.x * x.y + 3.0 * c.z * x.x * x.y * x.y + c.w * x.y * x.y * x.y,
+                c.x * x.x * x.x * y.x + c.y * (x.x * x.x * y.y + 2.0 * x.x * x.y * y.x) +
+                    c.z * (2.0 * x.x * x.y * y.y + x.y * x.y * y.x) + c.w * x.y * x.y * y.y,
+                c.x * x.x * y.x * y.x + c.y * (2.0 * x.x * y.x * y.y + x.y * y.x * y.x) +
+                    c.z * (x.x * y.y * y.y + 2.0 * x.y * y.x * y.y) + c.w * x.y * y.y * y.y,
+                c.x * y.x * y.x * y.x + 3.0 * c.y * y.x * y.x * y.y + 3.0 * c.z * y.x * y.y * y.y + c.w * y.y * y.y * y.y);
+}
+
+// Solves the symmetric positive (semi)definite A x = r by Cholesky; zero when singular.
+vec4 solveSymmetric4(mat4 A, vec4 r)
+{
+    mat4 L = mat4(0.0);
+    for (int j = 0; j < 4; ++j) {
+        float d = A[j][j];
+        for (int k = 0; k < j; ++k)
+            d -= L[j][k] * L[j][k];
+        if (!(d > 1e-30))
+            return vec4(0.0);
+        L[j][j] = sqrt(d);
+        for (int i = j + 1; i < 4; ++i) {
+            float s = A[i][j];
+            for (int k = 0; k < j; ++k)
+                s -= L[i][k] * L[j][k];
+            L[i][j] = s / L[j][j];
+        }
+    }
+    vec4 y;
+    for (int i = 0; i < 4; ++i) {
+        float s = r[i];
+        for (int k = 0; k < i; ++k)
+            s -= L[i][k] * y[k];
+        y[i] = s / L[i][i];
+    }
+    vec4 x;
+    for (int i = 3; i >= 0; --i) {
+        float s = y[i];
+        for (int k = i + 1; k < 4; ++k)
+            s -= L[k][i] * x[k];
+        x[i] = s / L[i][i];
+    }
+    return x;
+}
+
+void main()
+{
+    uint mesh = gl_GlobalInvocationID.x;
+    if (mesh >= meshCount)
+        return;
+    uint stride = gl_NumWorkGroups.y * gl_WorkGroupSize.y;
+    for (uint v = gl_GlobalInvocationID.y; v < vertexCount; v += stride) {
+        uint index = v * meshCount + mesh;
+        vec4 k = curvatures[index];
+        float area = k.z;
+        vec3 n = normals[index].xyz;
+        vec3 d1 = directions[index].xyz;
+        vec3 d2 = cross(n, d1);
+        vec3 p = loadBatch(v, mesh).xyz;
+        vec4 sum = vec4(0.0);
+        for (uint w = wedgeOffsets[v]; area > 0.0 && w < wedgeOffsets[v + 1]; ++w) {
+            uvec2 bc = wedges[w];
+            vec3 pb = loadBatch(bc.x, mesh).xyz, pc = loadBatch(bc.y, mesh).xyz;
+            vec3 e0 = pc - pb, e1 = p - pc, e2 = pb - p;
+            vec3 fn = cross(e0, e1);
+            if (!(length(fn) > 0.0) || !(length(e0) > 0.0))
+                continue;
+            vec3 t = normalize(e0);
+            vec3 b = cross(normalize(fn), t);
+            vec3 c0 = vertexTensorIn(v, t, b), c1 = vertexTensorIn(bc.x, t, b), c2 = vertexTensorIn(bc.y, t, b);
+            // Tensor differences along e0 (c - b), e1 (v - c), e2 (b - v).
+            vec3 dc[3] = vec3[3](c2 - c1, c0 - c2, c1 - c0);
+            vec3 e[3] = vec3[3](e0, e1, e2);
+            mat4 A = mat4(0.0);
+            vec4 r = vec4(0.0);
+            for (int j = 0; j < 3; ++j) {
+                float u = dot(e[j], t), vv = dot(e[j], b);
+                vec4 rows[3] = vec4[3](vec4(u, vv, 0.0, 0.0), vec4(0.0, u, vv, 0.0), vec4(0.0, 0.0, u, vv));
+                for (int q = 0; q < 3; ++q) {
+                    A += outerProduct(rows[q], rows[q]);
+                    r += rows[q] * dc[j][q];
+                }
+            }
+            vec4 C = solveSymmetric4(A, r);
+            float corner = cornerAreas(e0, e1, e2).x;
+            sum += corner * projectDerivative(t, b, C, d1, d2);
+        }
+        derivatives[index] = area > 0.0 ? sum / area : vec4(0.0);
+    }
+}

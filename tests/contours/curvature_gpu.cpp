@@ -1,0 +1,115 @@
+#include "contours/curvature.h"
+#include "contours/curvature_gpu.h"
+#include "core/error.h"
+#include "geometry/primitives.h"
+#include "test_common.h"
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <random>
+
+using namespace facesketch;
+
+namespace {
+
+// Three different bumpy tori (not umbilic anywhere, curvature derivative non-zero).
+std::vector<Mesh> bumpyTori()
+{
+    std::vector<Mesh> meshes;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> phase(0, 2 * M_PI);
+    for (int m = 0; m < 3; ++m) {
+        Mesh t = makeTorus(30.0, 10.0 + 2 * m, 96, 48);
+        const double a = phase(rng), b = phase(rng);
+        for (Eigen::Index v = 0; v < t.V.rows(); ++v) {
+            const double x = t.V(v, 0), y = t.V(v, 1);
+            t.V(v, 2) *= 1.0 + 0.15 * std::sin(0.1 * x + a) * std::cos(0.08 * y + b);
+        }
+        meshes.push_back(t);
+    }
+    return meshes;
+}
+
+Eigen::Matrix3d secondForm(double k1, double k2, const Eigen::Vector3d& d1, const Eigen::Vector3d& d2)
+{
+    return k1 * d1 * d1.transpose() + k2 * d2 * d2.transpose();
+}
+
+} // namespace
+
+TEST_CASE("curvature_gpu: matches the double-precision CPU reference on a batch of meshes")
+{
+    const std::vector<Mesh> meshes = bumpyTori();
+    const Eigen::Index nv = meshes[0].V.rows();
+    std::vector<float> positions;
+    for (const Mesh& m : meshes)
+        for (Eigen::Index v = 0; v < nv; ++v)
+            for (int c = 0; c < 3; ++c)
+                positions.push_back(static_cast<float>(m.V(v, c)));
+
+    GpuCurvature gpu(test::device(), meshes[0].F, nv);
+    gpu.setPositions(positions);
+    gpu.run();
+    const GpuCurvature::Result r = gpu.download();
+
+    // Float positions of ~40 mm give curvature to about 1e-5 relative; C, a difference of
+    // curvatures over ~3 mm edges, to about 1e-2 of its range. Compared: frame-independent
+    // quantities (the tensors), so directions at near-umbilic points cannot flip the outcome.
+    for (size_t m = 0; m < meshes.size(); ++m) {
+        const Curvature c = estimateCurvature(meshes[m]);
+        const double kScale = std::max(c.k1.cwiseAbs().maxCoeff(), c.k2.cwiseAbs().maxCoeff());
+        const double cScale = c.dcurv.cwiseAbs().maxCoeff();
+        double worstN = 0, worstK = 0, worstC = 0, worstArea = 0;
+        for (Eigen::Index v = 0; v < nv; ++v) {
+            const size_t i = m * nv + v;
+            const Eigen::Vector3d n(r.normal[3 * i], r.normal[3 * i + 1], r.normal[3 * i + 2]);
+            const Eigen::Vector3d d1(r.direction[3 * i], r.direction[3 * i + 1], r.direction[3 * i + 2]);
+            const Eigen::Vector3d d2 = n.cross(d1);
+            const double k1 = r.curvature[4 * i], k2 = r.curvature[4 * i + 1], area = r.curvature[4 * i + 2];
+            worstN = std::max(worstN, (n - c.normal.row(v).transpose()).norm());
+            worstArea = std::max(worstArea, std::abs(area - c.area[v]) / c.area[v]);
+            REQUIRE(k1 >= k2);
+            const Eigen::Matrix3d gpuII = secondForm(k1, k2, d1, d2);
+            const Eigen::Matrix3d cpuII = secondForm(c.k1[v], c.k2[v], c.dir1.row(v).transpose(), c.dir2.row(v).transpose());
+            worstK = std::max(worstK, (gpuII - cpuII).cwiseAbs().maxCoeff() / kScale);
+            for (double angle : {0.0, 0.7, 1.9}) {
+                const Eigen::Vector3d x = std::cos(angle) * c.dir1.row(v).transpose() + std::sin(angle) * c.dir2.row(v).transpose();
+                auto cubic = [](const float* d, double a, double b) { return d[0] * a * a * a + 3 * d[1] * a * a * b + 3 * d[2] * a * b * b + d[3] * b * b * b; };
+                const float* gd = &r.derivative[4 * i];
+                float cd[4];
+                for (int k = 0; k < 4; ++k)
+                    cd[k] = static_cast<float>(c.dcurv(v, k));
+                const double gpuC = cubic(gd, x.dot(d1), x.dot(d2));
+                const double cpuC = cubic(cd, x.dot(c.dir1.row(v)), x.dot(c.dir2.row(v)));
+                worstC = std::max(worstC, std::abs(gpuC - cpuC) / cScale);
+            }
+        }
+        INFO("mesh " << m << ": normal " << worstN << ", II " << worstK << " of |k|max " << kScale << ", C(x,x,x) " << worstC
+                     << " of |C|max " << cScale << ", area " << worstArea);
+        CHECK(worstN < 1e-5);
+        CHECK(worstArea < 1e-4);
+        CHECK(worstK < 1e-4);
+        CHECK(worstC < 1e-2);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("curvature_gpu: a sphere's curvature is 1/r on the GPU too")
+{
+    const Mesh sphere = makeIcosphere(20.0, 4);
+    std::vector<float> positions;
+    for (Eigen::Index v = 0; v < sphere.V.rows(); ++v)
+        for (int c = 0; c < 3; ++c)
+            positions.push_back(static_cast<float>(sphere.V(v, c)));
+    GpuCurvature gpu(test::device(), sphere.F, sphere.V.rows());
+    gpu.setPositions(positions);
+    gpu.run();
+    const GpuCurvature::Result r = gpu.download();
+    for (Eigen::Index v = 0; v < sphere.V.rows(); ++v) {
+        INFO("vertex " << v);
+        REQUIRE(r.curvature[4 * v] == Approx(0.05).epsilon(0.01));
+        REQUIRE(r.curvature[4 * v + 1] == Approx(0.05).epsilon(0.01));
+    }
+    REQUIRE_THROWS_AS(gpu.setPositions(std::vector<float>(7, 0.0f)), Error);
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
