@@ -40,4 +40,21 @@
 #define DRAW_MODE_UNLIT 1   // vertex colour as is
 #define DRAW_MODE_POINTS 2  // unlit round points
 
+// contours.comp: per-view contour tests and the candidate cloud (thesis 4.3, 4.4).
+#define CONTOURS_BINDING_POSITIONS 0
+#define CONTOURS_BINDING_NORMALS 1
+#define CONTOURS_BINDING_CURVATURE 2
+#define CONTOURS_BINDING_DIRECTIONS 3
+#define CONTOURS_BINDING_DERIVATIVE 4
+#define CONTOURS_BINDING_WEDGE_OFFSETS 5
+#define CONTOURS_BINDING_WEDGES 6
+#define CONTOURS_BINDING_FLAGS 7      // uint per vertex: VERTEX_LABELLED | VERTEX_EXCLUDED
+#define CONTOURS_BINDING_VIEW 8       // ContourViewGpu (engine/contours/candidates_gpu.cpp)
+#define CONTOURS_BINDING_OUTPUT 9     // uint count, 3 pad, then candidates: uvec4(mesh, vertex, types, 0), vec4(world, depth), vec4(screen, 0, 0)
+#define CONTOUR_SILHOUETTE 1u
+#define CONTOUR_SUGGESTIVE 2u
+#define CONTOUR_LABELLED 4u
+#define VERTEX_LABELLED 1u
+#define VERTEX_EXCLUDED 2u
+
 #endif

@@ -4,6 +4,7 @@
 // counter-clockwise seen from outside, so cross(b - a, c - a) points outward.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry> // cross products on rows of Vertices
 #include <cstdint>
 
 namespace facesketch {

@@ -60,6 +60,8 @@ void dispatch(Device& device, VkCommandBuffer cmd, const ComputeProgram& program
 
 /// Shader writes before the barrier are visible to later shader reads/writes and transfers.
 void computeBarrier(VkCommandBuffer cmd);
+/// Transfer writes (fills, copies) before the barrier are visible to later shader access.
+void transferToComputeBarrier(VkCommandBuffer cmd);
 /// Shader and transfer writes are visible to the host (before a readback of mapped memory).
 void hostReadBarrier(VkCommandBuffer cmd);
 

@@ -12,7 +12,7 @@
 #include "core/mesh.h"
 #include "gpu/device.h"
 #include "io/png.h"
-#include "render/camera.h"
+#include "geometry/camera.h"
 
 #include <glm/glm.hpp>
 #include <memory>

@@ -1,4 +1,4 @@
-#include "render/camera.h"
+#include "geometry/camera.h"
 
 #include "core/error.h"
 

@@ -1,0 +1,137 @@
+#include "contours/candidates_gpu.h"
+
+#include "core/error.h"
+#include "shaders/contours_comp.h"
+#include "shaders/shared.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace facesketch {
+
+namespace {
+
+// Mirrors the View block of shaders/contours.comp.glsl (std430).
+struct ContourViewGpu {
+    glm::mat4 viewProjection;
+    glm::vec4 eye;
+    glm::vec4 toCameraOrtho;
+    glm::vec4 rect;
+    glm::vec4 sphere;
+    glm::vec4 thresholds;
+    glm::vec4 screen;
+    std::uint32_t counts[4];
+};
+static_assert(sizeof(ContourViewGpu) == 64 + 6 * 16 + 16);
+
+struct CandidateGpu {
+    std::uint32_t ids[4];
+    float world[4];
+    float pixel[4];
+};
+constexpr VkDeviceSize outputHeader = 16;
+
+// Float limits for the "everything" defaults (1e30 fits in a float; larger would be inf).
+float clampToFloat(double x)
+{
+    return static_cast<float>(std::clamp(x, -1e30, 1e30));
+}
+
+} // namespace
+
+GpuCandidates::GpuCandidates(gpu::Device& device, GpuCurvature& curvature, const std::vector<std::uint32_t>& flags)
+    : device_(device), curvature_(curvature)
+{
+    const auto nv = static_cast<size_t>(curvature.vertexCount());
+    if (!flags.empty() && flags.size() != nv)
+        fail("GpuCandidates: ", flags.size(), " vertex flags for ", nv, " vertices");
+    program_ = gpu::createComputeProgram(device_, gpu::shaderCode(contours_comp), 10, 0);
+    flags_ = gpu::createBuffer(device_, nv * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    std::vector<std::uint32_t> f = flags.empty() ? std::vector<std::uint32_t>(nv, 0) : flags;
+    gpu::uploadBuffer(device_, flags_, f.data(), flags_.size);
+    view_ = gpu::createBuffer(device_, sizeof(ContourViewGpu), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    timer_ = gpu::createGpuTimer(device_);
+}
+
+GpuCandidates::~GpuCandidates()
+{
+    vkDeviceWaitIdle(device_.device);
+    gpu::destroyGpuTimer(device_, timer_);
+    if (output_.buffer)
+        gpu::destroyBuffer(device_, output_);
+    gpu::destroyBuffer(device_, view_);
+    gpu::destroyBuffer(device_, flags_);
+    gpu::destroyComputeProgram(device_, program_);
+}
+
+std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourParams& p, double* timing)
+{
+    const std::uint32_t meshCount = curvature_.meshCount();
+    const auto vertexCount = static_cast<std::uint32_t>(curvature_.vertexCount());
+    if (meshCount == 0)
+        fail("GpuCandidates::build: the curvature holds no meshes");
+    if (capacity_ == 0) {
+        // A view's cloud is typically a few percent of all vertices; grown on demand below.
+        capacity_ = std::max<std::uint32_t>(1024, meshCount * vertexCount / 16);
+        output_ = gpu::createBuffer(device_, outputHeader + VkDeviceSize(capacity_) * sizeof(CandidateGpu), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    }
+
+    ContourViewGpu view{};
+    view.viewProjection = glm::mat4(camera.projection * camera.view);
+    view.eye = glm::vec4(glm::vec3(camera.eye), camera.kind == Projection::Perspective ? 1.0f : 0.0f);
+    view.toCameraOrtho = glm::vec4(glm::vec3(-camera.forward), 0.0f);
+    view.rect = {clampToFloat(p.rect[0]), clampToFloat(p.rect[1]), clampToFloat(p.rect[2]), clampToFloat(p.rect[3])};
+    view.sphere = {float(p.sphere[0]), float(p.sphere[1]), float(p.sphere[2]), clampToFloat(p.sphere[3])};
+    view.thresholds = {float(p.silhouetteThreshold), float(p.suggestiveThreshold), float(p.featureSize * p.featureSize), 0.0f};
+    view.screen = {float(camera.width), float(camera.height), 0.0f, 0.0f};
+
+    for (;;) {
+        view.counts[0] = vertexCount;
+        view.counts[1] = meshCount;
+        view.counts[2] = capacity_;
+        gpu::uploadBuffer(device_, view_, &view, sizeof(view));
+        const std::uint32_t rows = std::min<std::uint32_t>(vertexCount, 65535u * program_.localSize[1]);
+        gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
+            gpu::timerStart(cmd, timer_);
+            vkCmdFillBuffer(cmd, output_.buffer, 0, outputHeader, 0);
+            gpu::transferToComputeBarrier(cmd);
+            gpu::dispatchRaw(device_, cmd, program_, meshCount, rows, 1,
+                             {&curvature_.positions(), &curvature_.normals(), &curvature_.curvatures(), &curvature_.directions(),
+                              &curvature_.derivatives(), &curvature_.wedgeOffsets(), &curvature_.wedges(), &flags_, &view_, &output_},
+                             nullptr, 0);
+            gpu::hostReadBarrier(cmd);
+            gpu::timerEnd(cmd, timer_);
+        });
+        if (timing)
+            *timing = gpu::timerMilliseconds(device_, timer_);
+        std::uint32_t count = 0;
+        gpu::readbackBuffer(device_, output_, &count, sizeof(count));
+        if (count > capacity_) {
+            vkDeviceWaitIdle(device_.device);
+            gpu::destroyBuffer(device_, output_);
+            capacity_ = count + count / 4;
+            output_ = gpu::createBuffer(device_, outputHeader + VkDeviceSize(capacity_) * sizeof(CandidateGpu),
+                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+            continue;
+        }
+        std::vector<CandidateGpu> raw(count);
+        if (count)
+            gpu::readbackBuffer(device_, output_, raw.data(), raw.size() * sizeof(CandidateGpu), outputHeader);
+        std::vector<Candidate> out(count);
+        for (std::uint32_t i = 0; i < count; ++i) {
+            Candidate& c = out[i];
+            c.mesh = raw[i].ids[0];
+            c.vertex = raw[i].ids[1];
+            c.types = raw[i].ids[2];
+            std::memcpy(c.world, raw[i].world, sizeof(c.world));
+            c.depth = raw[i].world[3];
+            c.screen[0] = raw[i].pixel[0];
+            c.screen[1] = raw[i].pixel[1];
+        }
+        std::sort(out.begin(), out.end());
+        return out;
+    }
+}
+
+} // namespace facesketch

@@ -1,0 +1,37 @@
+#pragma once
+// The candidate cloud on the GPU (thesis 4.4): the per-view contour tests of
+// contours/candidates.h for every face whose curvature a GpuCurvature holds, appended to one
+// compact list with an atomic counter, then sorted by (mesh, vertex) on the host so that the
+// result does not depend on GPU scheduling.
+//
+//   GpuCandidates cloud(device, curvature, flags);           // once per dataset
+//   std::vector<Candidate> c = cloud.build(camera, params);  // per view change or stroke
+
+#include "contours/candidates.h"
+#include "contours/curvature_gpu.h"
+
+namespace facesketch {
+
+class GpuCandidates {
+public:
+    /// `curvature` must have run and must outlive this object; `flags` holds #V VertexFlag bits
+    /// (or is empty).
+    GpuCandidates(gpu::Device& device, GpuCurvature& curvature, const std::vector<std::uint32_t>& flags);
+    ~GpuCandidates();
+    GpuCandidates(const GpuCandidates&) = delete;
+    GpuCandidates& operator=(const GpuCandidates&) = delete;
+
+    /// The candidates seen by `camera`, sorted by (mesh, vertex). Grows its output buffer and
+    /// runs again when the cloud outgrows it. `timing`, if given, receives GPU ms of the last run.
+    std::vector<Candidate> build(const Camera& camera, const ContourParams& params, double* timing = nullptr);
+
+private:
+    gpu::Device& device_;
+    GpuCurvature& curvature_;
+    gpu::ComputeProgram program_;
+    gpu::Buffer flags_, view_, output_;
+    std::uint32_t capacity_ = 0;
+    gpu::GpuTimer timer_;
+};
+
+} // namespace facesketch

@@ -1,0 +1,166 @@
+#include "contours/candidates.h"
+#include "contours/candidates_gpu.h"
+#include "contours/curvature_gpu.h"
+#include "geometry/primitives.h"
+#include "test_common.h"
+
+#include <cmath>
+#include <random>
+#include <set>
+
+using namespace facesketch;
+
+namespace {
+
+struct Batch {
+    std::vector<Mesh> meshes;
+    std::vector<float> positions;
+};
+
+// Bumpy tori: silhouettes from every side and suggestive contours on the inner ring.
+Batch bumpyTori(int count)
+{
+    Batch b;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> phase(0, 2 * M_PI);
+    for (int m = 0; m < count; ++m) {
+        Mesh t = makeTorus(30.0, 9.0 + m, 96, 48);
+        const double a = phase(rng), c = phase(rng);
+        for (Eigen::Index v = 0; v < t.V.rows(); ++v)
+            t.V(v, 2) *= 1.0 + 0.2 * std::sin(0.15 * t.V(v, 0) + a) * std::cos(0.1 * t.V(v, 1) + c);
+        for (Eigen::Index v = 0; v < t.V.rows(); ++v)
+            for (int k = 0; k < 3; ++k)
+                b.positions.push_back(static_cast<float>(t.V(v, k)));
+        b.meshes.push_back(t);
+    }
+    return b;
+}
+
+// The CPU reference on the GPU's own curvature (converted to double), so the comparison checks
+// the contour kernel itself; tests/contours/curvature_gpu.cpp checks the curvature.
+std::vector<Curvature> curvatureFromGpu(const GpuCurvature::Result& r, size_t meshes, Eigen::Index nv)
+{
+    std::vector<Curvature> out(meshes);
+    for (size_t m = 0; m < meshes; ++m) {
+        Curvature& c = out[m];
+        c.normal.resize(nv, 3);
+        c.dir1.resize(nv, 3);
+        c.dir2.resize(nv, 3);
+        c.k1.resize(nv);
+        c.k2.resize(nv);
+        c.area.resize(nv);
+        c.dcurv.resize(nv, 4);
+        for (Eigen::Index v = 0; v < nv; ++v) {
+            const size_t i = m * nv + v;
+            const Eigen::Vector3d n(r.normal[3 * i], r.normal[3 * i + 1], r.normal[3 * i + 2]);
+            const Eigen::Vector3d d1(r.direction[3 * i], r.direction[3 * i + 1], r.direction[3 * i + 2]);
+            c.normal.row(v) = n.transpose();
+            c.dir1.row(v) = d1.transpose();
+            c.dir2.row(v) = n.cross(d1).transpose();
+            c.k1[v] = r.curvature[4 * i];
+            c.k2[v] = r.curvature[4 * i + 1];
+            c.area[v] = r.curvature[4 * i + 2];
+            for (int k = 0; k < 4; ++k)
+                c.dcurv(v, k) = r.derivative[4 * i + k];
+        }
+    }
+    return out;
+}
+
+void compareWithReference(const Batch& batch, GpuCurvature& curvature, GpuCandidates& gpu, const std::vector<std::uint32_t>& flags,
+                          const Camera& camera, const ContourParams& params)
+{
+    const Eigen::Index nv = batch.meshes[0].V.rows();
+    const std::vector<Curvature> curv = curvatureFromGpu(curvature.download(), batch.meshes.size(), nv);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> ties;
+    const std::vector<Candidate> cpu = contourCandidates(batch.meshes, curv, flags, camera, params, &ties);
+    const std::vector<Candidate> got = gpu.build(camera, params);
+    const std::set<std::pair<std::uint32_t, std::uint32_t>> tieSet(ties.begin(), ties.end());
+
+    size_t i = 0, j = 0, matched = 0, tied = 0;
+    while (i < cpu.size() || j < got.size()) {
+        if (i < cpu.size() && j < got.size() && cpu[i].mesh == got[j].mesh && cpu[i].vertex == got[j].vertex) {
+            const bool sameTypes = cpu[i].types == got[j].types;
+            if (!sameTypes && !tieSet.count({cpu[i].mesh, cpu[i].vertex}))
+                FAIL("mesh " << cpu[i].mesh << " vertex " << cpu[i].vertex << ": cpu types " << cpu[i].types << " gpu " << got[j].types);
+            tied += !sameTypes;
+            for (int k = 0; k < 2; ++k)
+                REQUIRE(got[j].screen[k] == Approx(cpu[i].screen[k]).margin(1e-2));
+            for (int k = 0; k < 3; ++k)
+                REQUIRE(got[j].world[k] == cpu[i].world[k]);
+            ++matched, ++i, ++j;
+            continue;
+        }
+        // Only one side has it: allowed only at a documented threshold tie.
+        const bool cpuFirst = j >= got.size() || (i < cpu.size() && cpu[i] < got[j]);
+        const Candidate& only = cpuFirst ? cpu[i] : got[j];
+        if (!tieSet.count({only.mesh, only.vertex}))
+            FAIL((cpuFirst ? "only the CPU" : "only the GPU") << " has mesh " << only.mesh << " vertex " << only.vertex << " types " << only.types);
+        ++tied;
+        (cpuFirst ? i : j)++;
+    }
+    INFO(matched << " candidates matched, " << tied << " differ at documented ties, " << ties.size() << " near ties");
+    REQUIRE(matched > 0);
+    REQUIRE(tied <= matched / 100 + 2);
+}
+
+} // namespace
+
+TEST_CASE("candidates_gpu: the cloud equals the CPU reference, orthographic and perspective, with culling")
+{
+    const Batch batch = bumpyTori(4);
+    const Eigen::Index nv = batch.meshes[0].V.rows();
+    GpuCurvature curvature(test::device(), batch.meshes[0].F, nv);
+    curvature.setPositions(batch.positions);
+    curvature.run();
+    std::vector<std::uint32_t> flags(nv, 0);
+    for (Eigen::Index v = 0; v < nv; v += 97)
+        flags[v] = VertexLabelled;
+    for (Eigen::Index v = 50; v < nv; v += 131)
+        flags[v] = VertexExcluded;
+    GpuCandidates gpu(test::device(), curvature, flags);
+
+    ContourParams params;
+    params.silhouetteThreshold = defaultSilhouetteThreshold(nv);
+    params.suggestiveThreshold = 0.005;
+    params.featureSize = meanEdgeLength(batch.meshes[0]);
+
+    SECTION("orthographic, whole view")
+    {
+        compareWithReference(batch, curvature, gpu, flags, frameMesh(batch.meshes[0], {0, 40}, 640, 480), params);
+    }
+    SECTION("perspective, culled to a rectangle and a sphere")
+    {
+        params.rect[0] = 100;
+        params.rect[1] = 50;
+        params.rect[2] = 500;
+        params.rect[3] = 400;
+        params.sphere[0] = 20;
+        params.sphere[3] = 35;
+        compareWithReference(batch, curvature, gpu, flags,
+                             frameMesh(batch.meshes[0], {30, 25}, 640, 480, Projection::Perspective), params);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("candidates_gpu: a cloud larger than the first buffer grows it and stays complete")
+{
+    const Batch batch = bumpyTori(2);
+    const Eigen::Index nv = batch.meshes[0].V.rows();
+    GpuCurvature curvature(test::device(), batch.meshes[0].F, nv);
+    curvature.setPositions(batch.positions);
+    curvature.run();
+    const std::vector<std::uint32_t> flags(nv, VertexLabelled); // every front-facing vertex
+    GpuCandidates gpu(test::device(), curvature, flags);
+    ContourParams params;
+    params.suggestiveThreshold = 1e30;
+    params.featureSize = 1;
+    const Camera camera = frameMesh(batch.meshes[0], {0, 90}, 256, 256);
+    const std::vector<Candidate> got = gpu.build(camera, params);
+    const std::vector<Candidate> again = gpu.build(camera, params);
+    REQUIRE(got.size() > static_cast<size_t>(2 * nv / 16)); // beyond the initial capacity
+    REQUIRE(got.size() == again.size());
+    for (size_t i = 1; i < got.size(); ++i)
+        REQUIRE(got[i - 1] < got[i]); // sorted, no duplicates
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
