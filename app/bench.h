@@ -25,6 +25,7 @@ const std::vector<Benchmark>& benchmarks();
 
 void benchNormals(const BenchOptions& options, std::ostream& out);
 void benchRender(const BenchOptions& options, std::ostream& out);
+void benchContours(const BenchOptions& options, std::ostream& out);
 
 /// Median of `samples` (which it reorders).
 double median(std::vector<double>& samples);

@@ -13,6 +13,7 @@ const std::vector<Benchmark>& benchmarks()
     static const std::vector<Benchmark> all = {
         {"normals", "area-weighted vertex normals of a batch of meshes: GPU kernel vs single-threaded CPU", benchNormals},
         {"render", "offscreen render of a lit mesh to an image, with readback", benchRender},
+        {"contours", "curvature pass and per-view candidate cloud for a batch of meshes: GPU vs single-threaded CPU", benchContours},
     };
     return all;
 }

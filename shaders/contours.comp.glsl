@@ -7,15 +7,15 @@
 
 layout(local_size_x = BATCH_GROUP_MESHES, local_size_y = BATCH_GROUP_VERTICES, local_size_z = 1) in;
 
-layout(binding = CONTOURS_BINDING_POSITIONS, std430) readonly buffer Positions { vec4 positions[]; };
-layout(binding = CONTOURS_BINDING_NORMALS, std430) readonly buffer Normals { vec4 normals[]; };
-layout(binding = CONTOURS_BINDING_CURVATURE, std430) readonly buffer Curvatures { vec4 curvatures[]; };
-layout(binding = CONTOURS_BINDING_DIRECTIONS, std430) readonly buffer Directions { vec4 directions[]; };
-layout(binding = CONTOURS_BINDING_DERIVATIVE, std430) readonly buffer Derivatives { vec4 derivatives[]; };
-layout(binding = CONTOURS_BINDING_WEDGE_OFFSETS, std430) readonly buffer WedgeOffsets { uint wedgeOffsets[]; };
-layout(binding = CONTOURS_BINDING_WEDGES, std430) readonly buffer Wedges { uvec2 wedges[]; };
-layout(binding = CONTOURS_BINDING_FLAGS, std430) readonly buffer Flags { uint flags[]; };
-layout(binding = CONTOURS_BINDING_VIEW, std430) readonly buffer View {
+layout(binding = CONTOURS_BINDING_POSITIONS, std430) restrict readonly buffer Positions { vec4 positions[]; };
+layout(binding = CONTOURS_BINDING_NORMALS, std430) restrict readonly buffer Normals { vec4 normals[]; };
+layout(binding = CONTOURS_BINDING_CURVATURE, std430) restrict readonly buffer Curvatures { vec4 curvatures[]; };
+layout(binding = CONTOURS_BINDING_DIRECTIONS, std430) restrict readonly buffer Directions { vec4 directions[]; };
+layout(binding = CONTOURS_BINDING_DERIVATIVE, std430) restrict readonly buffer Derivatives { vec4 derivatives[]; };
+layout(binding = CONTOURS_BINDING_WEDGE_OFFSETS, std430) restrict readonly buffer WedgeOffsets { uint wedgeOffsets[]; };
+layout(binding = CONTOURS_BINDING_WEDGES, std430) restrict readonly buffer Wedges { uvec2 wedges[]; };
+layout(binding = CONTOURS_BINDING_FLAGS, std430) restrict readonly buffer Flags { uint flags[]; };
+layout(binding = CONTOURS_BINDING_VIEW, std430) restrict readonly buffer View {
     mat4 viewProjection;
     vec4 eye;        // xyz; w = 1 for perspective, 0 for orthographic
     vec4 toCameraOrtho;

@@ -9,12 +9,12 @@
 
 layout(local_size_x = BATCH_GROUP_MESHES, local_size_y = BATCH_GROUP_VERTICES, local_size_z = 1) in;
 
-layout(binding = CURVATURE_BINDING_POSITIONS, std430) readonly buffer Positions { vec4 positions[]; };
-layout(binding = CURVATURE_BINDING_WEDGE_OFFSETS, std430) readonly buffer WedgeOffsets { uint wedgeOffsets[]; };
-layout(binding = CURVATURE_BINDING_WEDGES, std430) readonly buffer Wedges { uvec2 wedges[]; };
-layout(binding = CURVATURE_BINDING_NORMALS, std430) readonly buffer Normals { vec4 normals[]; };
-layout(binding = CURVATURE_BINDING_CURVATURE, std430) writeonly buffer Curvatures { vec4 curvatures[]; }; // k1, k2, area, 0
-layout(binding = CURVATURE_BINDING_DIRECTIONS, std430) writeonly buffer Directions { vec4 directions[]; }; // dir1, 0
+layout(binding = CURVATURE_BINDING_POSITIONS, std430) restrict readonly buffer Positions { vec4 positions[]; };
+layout(binding = CURVATURE_BINDING_WEDGE_OFFSETS, std430) restrict readonly buffer WedgeOffsets { uint wedgeOffsets[]; };
+layout(binding = CURVATURE_BINDING_WEDGES, std430) restrict readonly buffer Wedges { uvec2 wedges[]; };
+layout(binding = CURVATURE_BINDING_NORMALS, std430) restrict readonly buffer Normals { vec4 normals[]; };
+layout(binding = CURVATURE_BINDING_CURVATURE, std430) restrict writeonly buffer Curvatures { vec4 curvatures[]; }; // k1, k2, area, 0
+layout(binding = CURVATURE_BINDING_DIRECTIONS, std430) restrict writeonly buffer Directions { vec4 directions[]; }; // dir1, 0
 
 layout(push_constant) uniform Constants {
     uint vertexCount;

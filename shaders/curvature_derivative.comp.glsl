@@ -10,13 +10,13 @@
 
 layout(local_size_x = BATCH_GROUP_MESHES, local_size_y = BATCH_GROUP_VERTICES, local_size_z = 1) in;
 
-layout(binding = DCURV_BINDING_POSITIONS, std430) readonly buffer Positions { vec4 positions[]; };
-layout(binding = DCURV_BINDING_WEDGE_OFFSETS, std430) readonly buffer WedgeOffsets { uint wedgeOffsets[]; };
-layout(binding = DCURV_BINDING_WEDGES, std430) readonly buffer Wedges { uvec2 wedges[]; };
-layout(binding = DCURV_BINDING_NORMALS, std430) readonly buffer Normals { vec4 normals[]; };
-layout(binding = DCURV_BINDING_CURVATURE, std430) readonly buffer Curvatures { vec4 curvatures[]; };
-layout(binding = DCURV_BINDING_DIRECTIONS, std430) readonly buffer Directions { vec4 directions[]; };
-layout(binding = DCURV_BINDING_DERIVATIVE, std430) writeonly buffer Derivatives { vec4 derivatives[]; };
+layout(binding = DCURV_BINDING_POSITIONS, std430) restrict readonly buffer Positions { vec4 positions[]; };
+layout(binding = DCURV_BINDING_WEDGE_OFFSETS, std430) restrict readonly buffer WedgeOffsets { uint wedgeOffsets[]; };
+layout(binding = DCURV_BINDING_WEDGES, std430) restrict readonly buffer Wedges { uvec2 wedges[]; };
+layout(binding = DCURV_BINDING_NORMALS, std430) restrict readonly buffer Normals { vec4 normals[]; };
+layout(binding = DCURV_BINDING_CURVATURE, std430) restrict readonly buffer Curvatures { vec4 curvatures[]; };
+layout(binding = DCURV_BINDING_DIRECTIONS, std430) restrict readonly buffer Directions { vec4 directions[]; };
+layout(binding = DCURV_BINDING_DERIVATIVE, std430) restrict writeonly buffer Derivatives { vec4 derivatives[]; };
 
 layout(push_constant) uniform Constants {
     uint vertexCount;

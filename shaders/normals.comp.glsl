@@ -9,10 +9,10 @@
 
 layout(local_size_x = BATCH_GROUP_MESHES, local_size_y = BATCH_GROUP_VERTICES, local_size_z = 1) in;
 
-layout(binding = NORMALS_BINDING_POSITIONS, std430) readonly buffer Positions { vec4 positions[]; };
-layout(binding = NORMALS_BINDING_WEDGE_OFFSETS, std430) readonly buffer WedgeOffsets { uint wedgeOffsets[]; };
-layout(binding = NORMALS_BINDING_WEDGES, std430) readonly buffer Wedges { uvec2 wedges[]; };
-layout(binding = NORMALS_BINDING_NORMALS, std430) writeonly buffer Normals { vec4 normals[]; };
+layout(binding = NORMALS_BINDING_POSITIONS, std430) restrict readonly buffer Positions { vec4 positions[]; };
+layout(binding = NORMALS_BINDING_WEDGE_OFFSETS, std430) restrict readonly buffer WedgeOffsets { uint wedgeOffsets[]; };
+layout(binding = NORMALS_BINDING_WEDGES, std430) restrict readonly buffer Wedges { uvec2 wedges[]; };
+layout(binding = NORMALS_BINDING_NORMALS, std430) restrict writeonly buffer Normals { vec4 normals[]; };
 
 layout(push_constant) uniform Constants {
     uint vertexCount;

@@ -1,6 +1,7 @@
 #include "contours/candidates_gpu.h"
 
 #include "core/error.h"
+#include "geometry/mesh_batch.h"
 #include "shaders/contours_comp.h"
 #include "shaders/shared.h"
 
@@ -91,7 +92,7 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
         view.counts[1] = meshCount;
         view.counts[2] = capacity_;
         gpu::uploadBuffer(device_, view_, &view, sizeof(view));
-        const std::uint32_t rows = std::min<std::uint32_t>(vertexCount, 65535u * program_.localSize[1]);
+        const std::uint32_t rows = batchRows(vertexCount, meshCount, program_.localSize[0], program_.localSize[1]);
         gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
             gpu::timerStart(cmd, timer_);
             vkCmdFillBuffer(cmd, output_.buffer, 0, outputHeader, 0);

@@ -105,7 +105,7 @@ double GpuCurvature::run()
     const auto vertices = static_cast<std::uint32_t>(vertexCount_);
     const NormalsConstants normalsConstants{vertices, meshCount_, NORMALS_WEIGHT_MAX};
     const BatchConstants constants{vertices, meshCount_};
-    const std::uint32_t rows = std::min<std::uint32_t>(vertices, 65535u * curvatureProgram_.localSize[1]);
+    const std::uint32_t rows = batchRows(vertices, meshCount_, curvatureProgram_.localSize[0], curvatureProgram_.localSize[1]);
     gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
         gpu::timerStart(cmd, timer_);
         gpu::dispatch(device_, cmd, normalsProgram_, meshCount_, rows, 1, {&positions_, &wedgeOffsets_, &wedges_, &normals_},

@@ -2,6 +2,8 @@
 
 #include "core/error.h"
 
+#include <algorithm>
+
 namespace facesketch {
 
 namespace {
@@ -33,6 +35,15 @@ std::vector<float> fromBatchLayout(const std::vector<float>& batch, std::size_t 
             for (std::size_t c = 0; c < 3; ++c)
                 meshMajor[3 * (m * vertexCount + v) + c] = batch[4 * (v * meshCount + m) + c];
     return meshMajor;
+}
+
+std::uint32_t batchRows(std::uint32_t vertexCount, std::uint32_t meshCount, std::uint32_t groupMeshes, std::uint32_t groupVertices,
+                        std::uint32_t targetInvocations)
+{
+    const std::uint32_t columns = (meshCount + groupMeshes - 1) / groupMeshes * groupMeshes;
+    std::uint32_t rows = std::max<std::uint32_t>(groupVertices, targetInvocations / std::max<std::uint32_t>(columns, 1));
+    rows = (rows + groupVertices - 1) / groupVertices * groupVertices;
+    return std::min({rows, vertexCount, 65535u * groupVertices});
 }
 
 } // namespace facesketch

@@ -6,6 +6,7 @@
 // convert between the two.
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace facesketch {
@@ -15,5 +16,13 @@ namespace facesketch {
 std::vector<float> toBatchLayout(const std::vector<float>& meshMajor, std::size_t meshCount, std::size_t vertexCount);
 /// Batch layout back to mesh-major.
 std::vector<float> fromBatchLayout(const std::vector<float>& batch, std::size_t meshCount, std::size_t vertexCount);
+
+/// The y extent (vertex rows) to dispatch a batch kernel with, meshes along x: the shaders stride
+/// over vertices, so fewer rows mean more vertices per invocation. Aims at `targetInvocations`
+/// in flight: plenty to fill a GPU, while a CPU implementation pays its per-workgroup cost
+/// (lavapipe: about 3.5 us a group, measured in BENCHMARKS.md) a few hundred times, not tens
+/// of thousands. At most vertexCount and at least one workgroup row.
+std::uint32_t batchRows(std::uint32_t vertexCount, std::uint32_t meshCount, std::uint32_t groupMeshes, std::uint32_t groupVertices,
+                        std::uint32_t targetInvocations = 1u << 30);
 
 } // namespace facesketch

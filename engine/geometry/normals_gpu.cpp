@@ -76,8 +76,8 @@ double GpuNormals::run()
     const NormalsConstants constants{static_cast<std::uint32_t>(vertexCount_), meshCount_, NORMALS_WEIGHT_AREA};
     gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
         gpu::timerStart(cmd, timer_);
-        // Meshes along x, vertices along y; the shader strides over vertices past 65535 groups.
-        const auto rows = std::min<std::uint32_t>(constants.vertexCount, 65535u * program_.localSize[1]);
+        // Meshes along x, vertices along y; the shader strides over the remaining vertices.
+        const auto rows = batchRows(constants.vertexCount, constants.meshCount, program_.localSize[0], program_.localSize[1]);
         gpu::dispatch(device_, cmd, program_, constants.meshCount, rows, 1,
                       {&positions_, &wedgeOffsets_, &wedges_, &normals_}, constants);
         gpu::hostReadBarrier(cmd);

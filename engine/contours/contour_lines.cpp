@@ -1,0 +1,84 @@
+#include "contours/contour_lines.h"
+
+#include "core/error.h"
+
+#include <array>
+
+namespace facesketch {
+
+namespace {
+
+glm::vec3 lerp(const Mesh& mesh, int a, int b, double t)
+{
+    const Eigen::RowVector3d p = mesh.V.row(a) + t * (mesh.V.row(b) - mesh.V.row(a));
+    return {p.x(), p.y(), p.z()};
+}
+
+// Appends the segment where `f` crosses zero inside triangle t, if `keep` accepts the
+// interpolated crossing points (given the edge and parameter).
+template <typename Keep>
+void traceZero(const Mesh& mesh, Eigen::Index t, const std::vector<double>& f, std::vector<glm::vec3>& out, Keep keep)
+{
+    std::array<glm::vec3, 2> ends;
+    int found = 0;
+    for (int e = 0; e < 3 && found < 2; ++e) {
+        const int a = mesh.F(t, e), b = mesh.F(t, (e + 1) % 3);
+        if ((f[a] < 0) == (f[b] < 0))
+            continue;
+        const double s = f[a] / (f[a] - f[b]);
+        if (!keep(a, b, s))
+            return;
+        ends[found++] = lerp(mesh, a, b, s);
+    }
+    if (found == 2) {
+        out.push_back(ends[0]);
+        out.push_back(ends[1]);
+    }
+}
+
+} // namespace
+
+ContourLines contourLines(const Mesh& mesh, const Curvature& c, const Camera& camera, const ContourParams& params,
+                          const std::vector<std::uint32_t>& flags, const std::map<std::string, std::vector<int>>& labelled)
+{
+    const Eigen::Index nv = mesh.V.rows();
+    if (c.k1.size() != nv)
+        fail("contourLines: curvature of ", c.k1.size(), " vertices for a mesh of ", nv);
+    if (!flags.empty() && static_cast<Eigen::Index>(flags.size()) != nv)
+        fail("contourLines: ", flags.size(), " vertex flags for ", nv, " vertices");
+
+    std::vector<double> ndotv(nv), kr(nv), strength(nv);
+    const double l2 = params.featureSize * params.featureSize;
+    for (Eigen::Index v = 0; v < nv; ++v) {
+        const glm::dvec3 to = camera.toCamera({mesh.V(v, 0), mesh.V(v, 1), mesh.V(v, 2)});
+        const RadialCurvature r = radialCurvature(c, v, Eigen::Vector3d(to.x, to.y, to.z));
+        ndotv[v] = r.ndotv;
+        kr[v] = r.kr;
+        strength[v] = r.dwkr * l2;
+    }
+    auto interpolated = [](const std::vector<double>& g, int a, int b, double s) { return g[a] + s * (g[b] - g[a]); };
+
+    ContourLines lines;
+    for (Eigen::Index t = 0; t < mesh.F.rows(); ++t) {
+        if (!flags.empty() && ((flags[mesh.F(t, 0)] | flags[mesh.F(t, 1)] | flags[mesh.F(t, 2)]) & VertexExcluded))
+            continue;
+        traceZero(mesh, t, ndotv, lines.silhouette, [](int, int, double) { return true; });
+        traceZero(mesh, t, kr, lines.suggestive, [&](int a, int b, double s) {
+            return interpolated(ndotv, a, b, s) > 0 && interpolated(strength, a, b, s) > params.suggestiveThreshold;
+        });
+    }
+    for (const auto& [name, path] : labelled)
+        for (size_t i = 0; i + 1 < path.size(); ++i) {
+            const int a = path[i], b = path[i + 1];
+            if (a < 0 || b < 0 || a >= nv || b >= nv)
+                fail("contourLines: labelled contour '", name, "' has vertex ", std::min(a, b) < 0 ? std::min(a, b) : std::max(a, b),
+                     " outside [0, ", nv, ")");
+            if (ndotv[a] > -params.silhouetteThreshold && ndotv[b] > -params.silhouetteThreshold) {
+                lines.labelled.push_back(lerp(mesh, a, a, 0));
+                lines.labelled.push_back(lerp(mesh, b, b, 0));
+            }
+        }
+    return lines;
+}
+
+} // namespace facesketch
