@@ -1,6 +1,7 @@
 #include "core/error.h"
 #include "geometry/primitives.h"
 #include "io/png.h"
+#include "render/colormap.h"
 #include "render/renderer.h"
 #include "test_common.h"
 
@@ -113,4 +114,15 @@ TEST_CASE("camera: parseView accepts names and angles, rejects the rest")
     REQUIRE_THROWS_WITH(parseView("side"), Catch::Contains("view 'side'"));
     REQUIRE_THROWS_AS(parseView("10,100"), Error);
     REQUIRE_THROWS_AS(parseView("10,"), Error);
+}
+
+TEST_CASE("colormap: blue at 0, green at 0.5, red at 1, clamped outside")
+{
+    REQUIRE(blueToRed(0.0) == glm::vec4(0, 0, 1, 1));
+    REQUIRE(blueToRed(0.5) == glm::vec4(0, 1, 0, 1));
+    REQUIRE(blueToRed(1.0) == glm::vec4(1, 0, 0, 1));
+    REQUIRE(blueToRed(-3.0) == blueToRed(0.0));
+    REQUIRE(blueToRed(7.0) == blueToRed(1.0));
+    REQUIRE(blueToRed(0.125) == glm::vec4(0, 0.5f, 1, 1));
+    REQUIRE(blueToRed(0.75) == glm::vec4(1, 1, 0, 1));
 }
