@@ -8,14 +8,12 @@
 layout(local_size_x = BATCH_GROUP_MESHES, local_size_y = BATCH_GROUP_VERTICES, local_size_z = 1) in;
 
 layout(binding = CONTOURS_BINDING_POSITIONS, std430) restrict readonly buffer Positions { vec4 positions[]; };
-layout(binding = CONTOURS_BINDING_NORMALS, std430) restrict readonly buffer Normals { vec4 normals[]; };
-layout(binding = CONTOURS_BINDING_CURVATURE, std430) restrict readonly buffer Curvatures { vec4 curvatures[]; };
-layout(binding = CONTOURS_BINDING_DIRECTIONS, std430) restrict readonly buffer Directions { vec4 directions[]; };
-layout(binding = CONTOURS_BINDING_DERIVATIVE, std430) restrict readonly buffer Derivatives { vec4 derivatives[]; };
+layout(binding = CONTOURS_BINDING_SHAPE, std430) restrict readonly buffer Shapes { uvec4 shapes[]; };
+layout(binding = CONTOURS_BINDING_SHAPE_C23, std430) restrict readonly buffer ShapesC23 { uint shapesC23[]; };
 layout(binding = CONTOURS_BINDING_WEDGE_OFFSETS, std430) restrict readonly buffer WedgeOffsets { uint wedgeOffsets[]; };
 layout(binding = CONTOURS_BINDING_WEDGES, std430) restrict readonly buffer Wedges { uvec2 wedges[]; };
 layout(binding = CONTOURS_BINDING_FLAGS, std430) restrict readonly buffer Flags { uint flags[]; };
-layout(binding = CONTOURS_BINDING_VIEW, std430) restrict readonly buffer View {
+layout(binding = CONTOURS_BINDING_VIEW, std140) uniform View {
     mat4 viewProjection;
     vec4 eye;        // xyz; w = 1 for perspective, 0 for orthographic
     vec4 toCameraOrtho;
@@ -25,6 +23,8 @@ layout(binding = CONTOURS_BINDING_VIEW, std430) restrict readonly buffer View {
     vec4 screen;     // width, height
     uvec4 counts;    // vertexCount, meshCount, capacity, 0
 };
+#include "octahedral.glsl"
+
 struct Candidate {
     uvec4 ids;   // mesh, vertex, types, 0
     vec4 world;  // xyz, depth
@@ -41,23 +41,23 @@ vec3 toCamera(vec3 p)
     return eye.w > 0.5 ? normalize(eye.xyz - p) : toCameraOrtho.xyz;
 }
 
-// Radial curvature and its derivative along w (contours/curvature.h, radialCurvature).
-// Returns (kr, dwkr, ndotv).
-vec3 radial(uint index, vec3 v, bool withDerivative)
+// Radial curvature and its derivative along w (contours/curvature.h, radialCurvature) from a
+// packed shape. Returns (kr, dwkr, ndotv).
+vec3 radial(uvec4 shape, uint index, vec3 v, bool withDerivative)
 {
-    vec3 n = normals[index].xyz;
+    vec3 n = octDecode(unpackSnorm2x16(shape.x));
     float ndotv = dot(n, v);
     vec3 w = v - ndotv * n;
-    vec3 d1 = directions[index].xyz;
+    vec3 d1 = octDecode(unpackSnorm2x16(shape.y));
     float u = dot(w, d1), t = dot(w, cross(n, d1));
     float s2 = u * u + t * t;
     if (!(s2 > 1e-24))
         return vec3(0.0, 0.0, ndotv);
-    vec4 k = curvatures[index];
+    vec2 k = unpackHalf2x16(shape.z);
     float kr = (k.x * u * u + k.y * t * t) / s2;
     float dwkr = 0.0;
     if (withDerivative) {
-        vec4 d = derivatives[index];
+        vec4 d = vec4(unpackHalf2x16(shape.w), unpackHalf2x16(shapesC23[index]));
         float s = sqrt(s2);
         float cwww = (d.x * u * u * u + 3.0 * d.y * u * u * t + 3.0 * d.z * u * t * t + d.w * t * t * t) / (s2 * s);
         dwkr = cwww + 2.0 * k.x * k.y * ndotv / s;
@@ -85,7 +85,10 @@ void main()
         if (pixel.x < rect.x || pixel.x > rect.z || pixel.y < rect.y || pixel.y > rect.w || length(p - sphere.xyz) > sphere.w)
             continue;
 
-        vec3 r = radial(index, toCamera(p), true);
+        uvec4 shape = shapes[index];
+        if (shape.x == 0u && shape.y == 0u)
+            continue; // no tangent plane
+        vec3 r = radial(shape, index, toCamera(p), true);
         uint types = 0u;
         if (abs(r.z) < thresholds.x)
             types |= CONTOUR_SILHOUETTE;
@@ -95,7 +98,10 @@ void main()
                 for (int j = 0; j < 2; ++j) {
                     uint u = j == 0 ? bc.x : bc.y;
                     uint ui = u * meshCount + mesh;
-                    float b = radial(ui, toCamera(positions[ui].xyz), false).x;
+                    uvec4 neighbour = shapes[ui];
+                    if (neighbour.x == 0u && neighbour.y == 0u)
+                        continue;
+                    float b = radial(neighbour, ui, toCamera(positions[ui].xyz), false).x;
                     bool crossing = (r.x < 0.0) != (b < 0.0);
                     bool nearer = abs(r.x) < abs(b) || (abs(r.x) == abs(b) && v < u);
                     if (crossing && nearer)

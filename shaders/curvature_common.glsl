@@ -57,3 +57,4 @@ vec3 cornerAreas(vec3 e0, vec3 e1, vec3 e2)
     }
     return corner;
 }
+

@@ -17,6 +17,8 @@ layout(binding = DCURV_BINDING_NORMALS, std430) restrict readonly buffer Normals
 layout(binding = DCURV_BINDING_CURVATURE, std430) restrict readonly buffer Curvatures { vec4 curvatures[]; };
 layout(binding = DCURV_BINDING_DIRECTIONS, std430) restrict readonly buffer Directions { vec4 directions[]; };
 layout(binding = DCURV_BINDING_DERIVATIVE, std430) restrict writeonly buffer Derivatives { vec4 derivatives[]; };
+layout(binding = DCURV_BINDING_SHAPE, std430) restrict writeonly buffer Shapes { uvec4 shapes[]; };
+layout(binding = DCURV_BINDING_SHAPE_C23, std430) restrict writeonly buffer ShapesC23 { uint shapesC23[]; };
 
 layout(push_constant) uniform Constants {
     uint vertexCount;
@@ -24,6 +26,7 @@ layout(push_constant) uniform Constants {
 };
 
 #include "curvature_common.glsl"
+#include "octahedral.glsl"
 
 // The curvature tensor of vertex `v` read in the frame (t, b).
 vec3 vertexTensorIn(uint v, vec3 t, vec3 b)
@@ -126,6 +129,11 @@ void main()
             float corner = cornerAreas(e0, e1, e2).x;
             sum += corner * projectDerivative(t, b, C, d1, d2);
         }
-        derivatives[index] = area > 0.0 ? sum / area : vec4(0.0);
+        vec4 C = area > 0.0 ? sum / area : vec4(0.0);
+        derivatives[index] = C;
+        bool valid = area > 0.0 && length(n) > 0.0 && length(d1) > 0.0;
+        shapes[index] = valid ? uvec4(packSnorm2x16(octEncode(n)), packSnorm2x16(octEncode(d1)), packHalf2x16(k.xy), packHalf2x16(C.xy))
+                              : uvec4(0u);
+        shapesC23[index] = valid ? packHalf2x16(C.zw) : 0u;
     }
 }

@@ -34,6 +34,13 @@
 #define DCURV_BINDING_CURVATURE 4
 #define DCURV_BINDING_DIRECTIONS 5
 #define DCURV_BINDING_DERIVATIVE 6      // out: C111, C112, C122, C222 in the (dir1, dir2) frame
+#define DCURV_BINDING_SHAPE 7           // out: uvec4 packed for the contour tests (below), 0 where undefined
+#define DCURV_BINDING_SHAPE_C23 8       // out: uint, packHalf2x16(C122, C222)
+// The packed "shape" of a vertex, all the per-view contour tests read besides its position:
+// x = packSnorm2x16(octahedral(normal)), y = packSnorm2x16(octahedral(dir1)),
+// z = packHalf2x16(k1, k2), w = packHalf2x16(C111, C112); plus SHAPE_C23. 24 bytes instead of 64
+// (octahedral unit vectors: Cigolle et al., JCGT 2014). A vertex without a tangent plane
+// (zero normal) is all zeros, which no valid vertex can be (dir1 is never parallel to normal).
 
 // mesh.vert / mesh.frag: one vertex layout and one pipeline layout for triangles, lines, points.
 #define DRAW_MODE_LIT 0     // Lambert + specular from a head light, two-sided
@@ -42,15 +49,13 @@
 
 // contours.comp: per-view contour tests and the candidate cloud (thesis 4.3, 4.4).
 #define CONTOURS_BINDING_POSITIONS 0
-#define CONTOURS_BINDING_NORMALS 1
-#define CONTOURS_BINDING_CURVATURE 2
-#define CONTOURS_BINDING_DIRECTIONS 3
-#define CONTOURS_BINDING_DERIVATIVE 4
-#define CONTOURS_BINDING_WEDGE_OFFSETS 5
-#define CONTOURS_BINDING_WEDGES 6
-#define CONTOURS_BINDING_FLAGS 7      // uint per vertex: VERTEX_LABELLED | VERTEX_EXCLUDED
-#define CONTOURS_BINDING_VIEW 8       // ContourViewGpu (engine/contours/candidates_gpu.cpp)
-#define CONTOURS_BINDING_OUTPUT 9     // uint count, 3 pad, then candidates: uvec4(mesh, vertex, types, 0), vec4(world, depth), vec4(screen, 0, 0)
+#define CONTOURS_BINDING_SHAPE 1      // DCURV_BINDING_SHAPE
+#define CONTOURS_BINDING_SHAPE_C23 2  // DCURV_BINDING_SHAPE_C23
+#define CONTOURS_BINDING_WEDGE_OFFSETS 3
+#define CONTOURS_BINDING_WEDGES 4
+#define CONTOURS_BINDING_FLAGS 5      // uint per vertex: VERTEX_LABELLED | VERTEX_EXCLUDED
+#define CONTOURS_BINDING_VIEW 6       // ContourViewGpu (engine/contours/candidates_gpu.cpp)
+#define CONTOURS_BINDING_OUTPUT 7     // uint count, 3 pad, then candidates: uvec4(mesh, vertex, types, 0), vec4(world, depth), vec4(screen, 0, 0)
 #define CONTOUR_SILHOUETTE 1u
 #define CONTOUR_SUGGESTIVE 2u
 #define CONTOUR_LABELLED 4u

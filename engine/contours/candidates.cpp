@@ -9,6 +9,14 @@
 
 namespace facesketch {
 
+namespace {
+// Isolated and zero-area vertices have a zero normal: no tangent plane, no contour.
+bool hasTangentPlane(const Curvature& c, Eigen::Index v)
+{
+    return c.normal.row(v).squaredNorm() > 0;
+}
+} // namespace
+
 double defaultSilhouetteThreshold(std::int64_t vertexCount)
 {
     if (vertexCount <= 0)
@@ -58,7 +66,7 @@ std::vector<Candidate> contourCandidates(const std::vector<Mesh>& meshes, const 
         }
         for (Eigen::Index v = 0; v < nv; ++v) {
             const std::uint32_t flag = flags.empty() ? 0 : flags[v];
-            if (flag & VertexExcluded)
+            if ((flag & VertexExcluded) || !hasTangentPlane(c, v))
                 continue;
             const RadialCurvature& r = rc[v];
             bool tie = false;
@@ -74,6 +82,8 @@ std::vector<Candidate> contourCandidates(const std::vector<Mesh>& meshes, const 
                 const double scale = std::abs(c.k1[v]) + std::abs(c.k2[v]);
                 for (std::uint32_t w = wedges.offsets[v]; w < wedges.offsets[v + 1]; ++w)
                     for (const std::uint32_t u : wedges.corners[w]) {
+                        if (!hasTangentPlane(c, u))
+                            continue;
                         const double a = rc[v].kr, b = rc[u].kr;
                         const bool crossing = (a < 0) != (b < 0);
                         const bool nearer = std::abs(a) < std::abs(b) || (std::abs(a) == std::abs(b) && static_cast<std::uint32_t>(v) < u);

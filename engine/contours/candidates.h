@@ -14,7 +14,8 @@
 //   lower index), and D_w k_r l^2 > suggestiveThreshold, with l the mean edge length: the
 //   dimensionless form of DeCarlo's filter, which drops zero crossings of weak curvature.
 // - labelled (4.3.3): the dataset's contour vertices, unless facing away (n . v <= -silhouetteThreshold).
-// Vertices flagged excluded (4.3.3) are never candidates. A candidate is then kept only inside
+// Vertices flagged excluded (4.3.3), and vertices without a tangent plane (zero normal), are
+// never candidates. A candidate is then kept only inside
 // the screen rectangle and within the world sphere given (4.4's culling).
 
 #include "contours/curvature.h"

@@ -13,7 +13,7 @@ namespace facesketch {
 
 namespace {
 
-// Mirrors the View block of shaders/contours.comp.glsl (std430).
+// Mirrors the View block of shaders/contours.comp.glsl (std140: vec4s and a mat4 only, so the same as std430).
 struct ContourViewGpu {
     glm::mat4 viewProjection;
     glm::vec4 eye;
@@ -47,11 +47,11 @@ GpuCandidates::GpuCandidates(gpu::Device& device, GpuCurvature& curvature, const
     const auto nv = static_cast<size_t>(curvature.vertexCount());
     if (!flags.empty() && flags.size() != nv)
         fail("GpuCandidates: ", flags.size(), " vertex flags for ", nv, " vertices");
-    program_ = gpu::createComputeProgram(device_, gpu::shaderCode(contours_comp), 10, 0);
+    program_ = gpu::createComputeProgram(device_, gpu::shaderCode(contours_comp), 8, 0, 1u << CONTOURS_BINDING_VIEW);
     flags_ = gpu::createBuffer(device_, nv * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     std::vector<std::uint32_t> f = flags.empty() ? std::vector<std::uint32_t>(nv, 0) : flags;
     gpu::uploadBuffer(device_, flags_, f.data(), flags_.size);
-    view_ = gpu::createBuffer(device_, sizeof(ContourViewGpu), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    view_ = gpu::createBuffer(device_, sizeof(ContourViewGpu), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
     timer_ = gpu::createGpuTimer(device_);
 }
 
@@ -98,8 +98,8 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
             vkCmdFillBuffer(cmd, output_.buffer, 0, outputHeader, 0);
             gpu::transferToComputeBarrier(cmd);
             gpu::dispatchRaw(device_, cmd, program_, meshCount, rows, 1,
-                             {&curvature_.positions(), &curvature_.normals(), &curvature_.curvatures(), &curvature_.directions(),
-                              &curvature_.derivatives(), &curvature_.wedgeOffsets(), &curvature_.wedges(), &flags_, &view_, &output_},
+                             {&curvature_.positions(), &curvature_.shapes(), &curvature_.shapesC23(), &curvature_.wedgeOffsets(),
+                              &curvature_.wedges(), &flags_, &view_, &output_},
                              nullptr, 0);
             gpu::hostReadBarrier(cmd);
             gpu::timerEnd(cmd, timer_);

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace facesketch {
 
@@ -43,6 +44,29 @@ std::vector<float> downloadBatch(gpu::Device& device, const gpu::Buffer& buffer,
 
 } // namespace
 
+float halfToFloat(std::uint16_t h)
+{
+    const int exponent = (h >> 10) & 0x1f, mantissa = h & 0x3ff;
+    const float sign = (h & 0x8000) ? -1.0f : 1.0f;
+    if (exponent == 0)
+        return sign * std::ldexp(static_cast<float>(mantissa), -24);
+    if (exponent == 31)
+        return mantissa ? std::numeric_limits<float>::quiet_NaN() : sign * std::numeric_limits<float>::infinity();
+    return sign * std::ldexp(static_cast<float>(mantissa + 1024), exponent - 25);
+}
+
+Eigen::Vector3d octDecode(std::uint32_t packed)
+{
+    // unpackSnorm2x16: clamp(int16 / 32767, -1, 1), low half first.
+    auto snorm = [](std::uint16_t bits) { return std::max(-1.0f, static_cast<std::int16_t>(bits) / 32767.0f); };
+    const float fx = snorm(packed & 0xffff), fy = snorm(packed >> 16);
+    Eigen::Vector3f n(fx, fy, 1.0f - std::abs(fx) - std::abs(fy));
+    const float t = std::max(-n.z(), 0.0f);
+    n.x() += n.x() >= 0.0f ? -t : t;
+    n.y() += n.y() >= 0.0f ? -t : t;
+    return n.normalized().cast<double>();
+}
+
 GpuCurvature::GpuCurvature(gpu::Device& device, const Triangles& F, Eigen::Index vertexCount) : device_(device), vertexCount_(vertexCount)
 {
     if (vertexCount <= 0 || F.rows() == 0)
@@ -50,7 +74,7 @@ GpuCurvature::GpuCurvature(gpu::Device& device, const Triangles& F, Eigen::Index
     const Wedges w = buildWedges(F, vertexCount);
     normalsProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(normals_comp), 4, sizeof(NormalsConstants));
     curvatureProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(curvature_comp), 6, sizeof(BatchConstants));
-    derivativeProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(curvature_derivative_comp), 7, sizeof(BatchConstants));
+    derivativeProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(curvature_derivative_comp), 9, sizeof(BatchConstants));
     wedgeOffsets_ = gpu::createBuffer(device_, w.offsets.size() * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     wedges_ = gpu::createBuffer(device_, w.corners.size() * sizeof(w.corners[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     gpu::uploadBuffer(device_, wedgeOffsets_, w.offsets.data(), wedgeOffsets_.size);
@@ -72,7 +96,7 @@ GpuCurvature::~GpuCurvature()
 
 void GpuCurvature::destroyBatchBuffers()
 {
-    for (gpu::Buffer* b : {&derivatives_, &directions_, &curvature_, &normals_, &positions_})
+    for (gpu::Buffer* b : {&shapesC23_, &shapes_, &derivatives_, &directions_, &curvature_, &normals_, &positions_})
         if (b->buffer)
             gpu::destroyBuffer(device_, *b);
 }
@@ -90,8 +114,9 @@ void GpuCurvature::setPositions(const std::vector<float>& positions)
     if (!positions_.buffer || positions_.size != bytes) {
         vkDeviceWaitIdle(device_.device);
         destroyBatchBuffers();
-        for (gpu::Buffer* b : {&positions_, &normals_, &curvature_, &directions_, &derivatives_})
+        for (gpu::Buffer* b : {&positions_, &normals_, &curvature_, &directions_, &derivatives_, &shapes_})
             *b = gpu::createBuffer(device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        shapesC23_ = gpu::createBuffer(device_, bytes / 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     }
     meshCount_ = meshCount;
     const std::vector<float> batch = toBatchLayout(positions, meshCount_, static_cast<size_t>(vertexCount_));
@@ -115,7 +140,8 @@ double GpuCurvature::run()
                       {&positions_, &wedgeOffsets_, &wedges_, &normals_, &curvature_, &directions_}, constants);
         gpu::computeBarrier(cmd);
         gpu::dispatch(device_, cmd, derivativeProgram_, meshCount_, rows, 1,
-                      {&positions_, &wedgeOffsets_, &wedges_, &normals_, &curvature_, &directions_, &derivatives_}, constants);
+                      {&positions_, &wedgeOffsets_, &wedges_, &normals_, &curvature_, &directions_, &derivatives_, &shapes_, &shapesC23_},
+                      constants);
         gpu::hostReadBarrier(cmd);
         gpu::timerEnd(cmd, timer_);
     });
@@ -129,6 +155,27 @@ GpuCurvature::Result GpuCurvature::download()
     r.curvature = downloadBatch(device_, curvature_, meshCount_, vertexCount_, 4);
     r.direction = downloadBatch(device_, directions_, meshCount_, vertexCount_, 3);
     r.derivative = downloadBatch(device_, derivatives_, meshCount_, vertexCount_, 4);
+
+    const size_t n = static_cast<size_t>(meshCount_) * vertexCount_;
+    std::vector<std::uint32_t> shapes(4 * n), c23(n);
+    gpu::readbackBuffer(device_, shapes_, shapes.data(), shapes.size() * 4);
+    gpu::readbackBuffer(device_, shapesC23_, c23.data(), c23.size() * 4);
+    r.packed.assign(12 * n, 0.0f);
+    for (size_t v = 0; v < static_cast<size_t>(vertexCount_); ++v)
+        for (size_t m = 0; m < meshCount_; ++m) {
+            const size_t batch = v * meshCount_ + m, out = 12 * (m * vertexCount_ + v);
+            const std::uint32_t* s = &shapes[4 * batch];
+            if (s[0] == 0 && s[1] == 0)
+                continue;
+            const Eigen::Vector3d normal = octDecode(s[0]), dir1 = octDecode(s[1]);
+            const std::uint32_t halves[3] = {s[2], s[3], c23[batch]};
+            for (int k = 0; k < 3; ++k) {
+                r.packed[out + k] = static_cast<float>(normal[k]);
+                r.packed[out + 3 + k] = static_cast<float>(dir1[k]);
+                r.packed[out + 6 + 2 * k] = halfToFloat(static_cast<std::uint16_t>(halves[k] & 0xffff));
+                r.packed[out + 7 + 2 * k] = halfToFloat(static_cast<std::uint16_t>(halves[k] >> 16));
+            }
+        }
     return r;
 }
 

@@ -15,9 +15,15 @@
 #include "gpu/compute.h"
 #include "gpu/timer.h"
 
+#include <cstdint>
 #include <vector>
 
 namespace facesketch {
+
+/// Decoders of the GPU's packed formats (GLSL unpackHalf2x16, unpackSnorm2x16 and the
+/// octahedral unit vectors of shaders/octahedral.glsl), for reading packed shapes on the host.
+float halfToFloat(std::uint16_t h);
+Eigen::Vector3d octDecode(std::uint32_t packedSnorm2x16);
 
 class GpuCurvature {
 public:
@@ -37,6 +43,10 @@ public:
         std::vector<float> curvature;  ///< k1, k2, area, 0 per vertex
         std::vector<float> direction;  ///< dir1 xyz per vertex (dir2 = normal x dir1)
         std::vector<float> derivative; ///< C111, C112, C122, C222 per vertex
+        /// The packed shape the contour tests read (shaders/shared.h), decoded: normal xyz,
+        /// dir1 xyz, k1 k2, C111..C222 per vertex (3 + 3 + 2 + 4 floats); zeros where the
+        /// vertex has no tangent plane. Octahedral snorm16 vectors and half-float curvatures.
+        std::vector<float> packed;
     };
     Result download();
 
@@ -49,6 +59,8 @@ public:
     const gpu::Buffer& curvatures() const { return curvature_; }
     const gpu::Buffer& directions() const { return directions_; }
     const gpu::Buffer& derivatives() const { return derivatives_; }
+    const gpu::Buffer& shapes() const { return shapes_; }
+    const gpu::Buffer& shapesC23() const { return shapesC23_; }
     const gpu::Buffer& wedgeOffsets() const { return wedgeOffsets_; }
     const gpu::Buffer& wedges() const { return wedges_; }
 
@@ -60,7 +72,7 @@ private:
     std::uint32_t meshCount_ = 0;
     gpu::ComputeProgram normalsProgram_, curvatureProgram_, derivativeProgram_;
     gpu::Buffer wedgeOffsets_, wedges_;
-    gpu::Buffer positions_, normals_, curvature_, directions_, derivatives_;
+    gpu::Buffer positions_, normals_, curvature_, directions_, derivatives_, shapes_, shapesC23_;
     gpu::GpuTimer timer_;
 };
 

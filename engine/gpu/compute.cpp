@@ -37,9 +37,18 @@ VkShaderModule createShaderModule(Device& device, ShaderCode code)
     return module;
 }
 
-ComputeProgram createComputeProgram(Device& device, ShaderCode code, std::uint32_t bufferCount, std::uint32_t pushConstantSize)
+namespace {
+VkDescriptorType bindingType(const ComputeProgram& p, std::uint32_t binding)
+{
+    return (p.uniformMask >> binding) & 1u ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+}
+} // namespace
+
+ComputeProgram createComputeProgram(Device& device, ShaderCode code, std::uint32_t bufferCount, std::uint32_t pushConstantSize,
+                                    std::uint32_t uniformMask)
 {
     ComputeProgram p;
+    p.uniformMask = uniformMask;
     readLocalSize(code, p.localSize);
     p.bufferCount = bufferCount;
     p.pushConstantSize = pushConstantSize;
@@ -47,7 +56,7 @@ ComputeProgram createComputeProgram(Device& device, ShaderCode code, std::uint32
 
     std::vector<VkDescriptorSetLayoutBinding> bindings(bufferCount);
     for (std::uint32_t i = 0; i < bufferCount; ++i)
-        bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+        bindings[i] = {i, bindingType(p, i), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
     auto setInfo = makeStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
     setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
     setInfo.bindingCount = bufferCount;
@@ -97,7 +106,7 @@ void dispatchRaw(Device& device, VkCommandBuffer cmd, const ComputeProgram& prog
         auto w = makeStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
         w.dstBinding = i;
         w.descriptorCount = 1;
-        w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        w.descriptorType = bindingType(program, i);
         w.pBufferInfo = &infos[i];
         writes.push_back(w);
     }

@@ -1,6 +1,9 @@
 #pragma once
 // Compute programs and the one dispatch helper. A program is a SPIR-V compute shader whose
-// bindings 0..N-1 in set 0 are all storage buffers, with an optional push-constant block.
+// bindings 0..N-1 in set 0 are storage buffers, or uniform buffers where `uniformMask` has
+// bit i set (small per-dispatch parameters: implementations treat them as uniform, which a CPU
+// implementation such as lavapipe turns into one scalar load instead of a load per invocation),
+// with an optional push-constant block.
 // The workgroup size is read from the SPIR-V (OpExecutionMode LocalSize), so the shader is the
 // single source of truth for it.
 
@@ -39,9 +42,11 @@ struct ComputeProgram {
     std::uint32_t localSize[3] = {1, 1, 1};
     std::uint32_t bufferCount = 0;
     std::uint32_t pushConstantSize = 0;
+    std::uint32_t uniformMask = 0;
 };
 
-ComputeProgram createComputeProgram(Device& device, ShaderCode code, std::uint32_t bufferCount, std::uint32_t pushConstantSize);
+ComputeProgram createComputeProgram(Device& device, ShaderCode code, std::uint32_t bufferCount, std::uint32_t pushConstantSize,
+                                    std::uint32_t uniformMask = 0);
 void destroyComputeProgram(Device& device, ComputeProgram& program);
 
 /// Binds `program` and `buffers` (binding i = buffers[i], whole buffer), pushes `constants`

@@ -36,8 +36,8 @@ Batch bumpyTori(int count)
     return b;
 }
 
-// The CPU reference on the GPU's own curvature (converted to double), so the comparison checks
-// the contour kernel itself; tests/contours/curvature_gpu.cpp checks the curvature.
+// The CPU reference on the GPU's own packed curvature (decoded to double), so the comparison
+// checks the contour kernel itself; tests/contours/curvature_gpu.cpp checks the curvature.
 std::vector<Curvature> curvatureFromGpu(const GpuCurvature::Result& r, size_t meshes, Eigen::Index nv)
 {
     std::vector<Curvature> out(meshes);
@@ -51,17 +51,16 @@ std::vector<Curvature> curvatureFromGpu(const GpuCurvature::Result& r, size_t me
         c.area.resize(nv);
         c.dcurv.resize(nv, 4);
         for (Eigen::Index v = 0; v < nv; ++v) {
-            const size_t i = m * nv + v;
-            const Eigen::Vector3d n(r.normal[3 * i], r.normal[3 * i + 1], r.normal[3 * i + 2]);
-            const Eigen::Vector3d d1(r.direction[3 * i], r.direction[3 * i + 1], r.direction[3 * i + 2]);
+            const float* p = &r.packed[12 * (m * nv + v)];
+            const Eigen::Vector3d n(p[0], p[1], p[2]), d1(p[3], p[4], p[5]);
             c.normal.row(v) = n.transpose();
             c.dir1.row(v) = d1.transpose();
             c.dir2.row(v) = n.cross(d1).transpose();
-            c.k1[v] = r.curvature[4 * i];
-            c.k2[v] = r.curvature[4 * i + 1];
-            c.area[v] = r.curvature[4 * i + 2];
+            c.k1[v] = p[6];
+            c.k2[v] = p[7];
+            c.area[v] = r.curvature[4 * (m * nv + v) + 2];
             for (int k = 0; k < 4; ++k)
-                c.dcurv(v, k) = r.derivative[4 * i + k];
+                c.dcurv(v, k) = p[8 + k];
         }
     }
     return out;

@@ -113,3 +113,46 @@ TEST_CASE("curvature_gpu: a sphere's curvature is 1/r on the GPU too")
     REQUIRE_THROWS_AS(gpu.setPositions(std::vector<float>(7, 0.0f)), Error);
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
+
+TEST_CASE("curvature_gpu: the packed shape decodes to the full-precision values")
+{
+    const Mesh torus = makeTorus(30.0, 10.0, 64, 32);
+    std::vector<float> positions;
+    for (Eigen::Index v = 0; v < torus.V.rows(); ++v)
+        for (int c = 0; c < 3; ++c)
+            positions.push_back(static_cast<float>(torus.V(v, c)));
+    GpuCurvature gpu(test::device(), torus.F, torus.V.rows());
+    gpu.setPositions(positions);
+    gpu.run();
+    const GpuCurvature::Result r = gpu.download();
+    double worstVector = 0, worstK = 0, worstC = 0;
+    for (Eigen::Index v = 0; v < torus.V.rows(); ++v) {
+        const float* p = &r.packed[12 * v];
+        for (int k = 0; k < 3; ++k) {
+            worstVector = std::max({worstVector, double(std::abs(p[k] - r.normal[3 * v + k])), double(std::abs(p[3 + k] - r.direction[3 * v + k]))});
+        }
+        for (int k = 0; k < 2; ++k)
+            worstK = std::max(worstK, double(std::abs(p[6 + k] - r.curvature[4 * v + k]) / std::abs(r.curvature[4 * v + k])));
+        for (int k = 0; k < 4; ++k)
+            worstC = std::max(worstC, std::abs(p[8 + k] - r.derivative[4 * v + k]) - 1e-3 * std::abs(r.derivative[4 * v + k]));
+    }
+    INFO("unit vectors " << worstVector << ", curvature relative " << worstK << ", derivative excess " << worstC);
+    REQUIRE(worstVector < 1e-4); // octahedral snorm16: about 3e-5
+    REQUIRE(worstK < 1e-3);        // half floats: 2^-11 relative
+    REQUIRE(worstC < 1e-7);        // half floats, down to their subnormal range
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("curvature_gpu: host decoders of half floats and octahedral vectors")
+{
+    REQUIRE(halfToFloat(0x3c00) == 1.0f);
+    REQUIRE(halfToFloat(0xc000) == -2.0f);
+    REQUIRE(halfToFloat(0x7bff) == 65504.0f);
+    REQUIRE(halfToFloat(0x0001) == std::ldexp(1.0f, -24));
+    REQUIRE(std::isinf(halfToFloat(0x7c00)));
+    // (x, y) = (0, 0) is +z; (32767, 0) is +x; (0, -32767) is -y; the corners fold to -z.
+    REQUIRE((octDecode(0x00000000) - Eigen::Vector3d(0, 0, 1)).norm() < 1e-9);
+    REQUIRE((octDecode(0x00007fff) - Eigen::Vector3d(1, 0, 0)).norm() < 1e-9);
+    REQUIRE((octDecode(0x80010000) - Eigen::Vector3d(0, -1, 0)).norm() < 1e-9);
+    REQUIRE((octDecode(0x7fff7fff) - Eigen::Vector3d(0, 0, -1)).norm() < 1e-6);
+}
