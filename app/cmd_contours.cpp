@@ -88,13 +88,7 @@ void addLines(Renderer& r, const ContourLines& lines)
 
 void addContoursCommand(CLI::App& root)
 {
-    struct Options {
-        std::string input, output = "contours", view = "front";
-        int size = 1024, maxFaces = 230;
-        double suggestive = ContourParams{}.suggestiveThreshold, silhouette = -1;
-        bool perspective = false;
-    };
-    auto o = std::make_shared<Options>();
+    auto o = std::make_shared<ContourPictureOptions>();
     auto* cmd = root.add_subcommand("contours", "Draw a face's contours and a dataset's candidate cloud and its density from one view");
     cmd->add_option("input", o->input, "Dataset folder (its train and contour faces) or one mesh file")->required();
     cmd->add_option("-o,--output", o->output, "Prefix of the PNGs: PREFIX-face.png, -sketch.png, -cloud.png, -density.png")
@@ -105,7 +99,13 @@ void addContoursCommand(CLI::App& root)
     cmd->add_option("--suggestive", o->suggestive, "Suggestive contour threshold on D_w k_r l^2")->capture_default_str();
     cmd->add_option("--silhouette", o->silhouette, "Silhouette threshold on |n.v| (default: 0.14 sqrt(863 / #V))");
     cmd->add_flag("--perspective", o->perspective, "Perspective instead of orthographic projection");
-    cmd->callback([o] {
+    cmd->callback([o] { writeContourPictures(*o); });
+}
+
+void writeContourPictures(const ContourPictureOptions& options)
+{
+    const ContourPictureOptions* o = &options;
+    {
         const ViewAngles view = parseView(o->view);
         Stopwatch clock;
         const Faces faces = loadFaces(o->input, o->maxFaces);
@@ -186,7 +186,7 @@ void addContoursCommand(CLI::App& root)
             throw;
         }
         gpu::destroyDevice(device);
-    });
+    }
 }
 
 } // namespace facesketch::app

@@ -3,12 +3,37 @@
 // root CLI11 app and sets its callback; main() parses and reports facesketch::Error as a
 // one-line message with exit code 1.
 
+#include "contours/candidates.h"
+
 #include <CLI/CLI.hpp>
+#include <string>
 
 namespace facesketch::app {
 
 void addRenderCommand(CLI::App& root);
 void addBenchCommand(CLI::App& root);
 void addDemoCommand(CLI::App& root);
+void addContoursCommand(CLI::App& root);
+void addSynthCommand(CLI::App& root);
+void addImportCommand(CLI::App& root);
+void addTrainCommand(CLI::App& root);
+void addEvalCommand(CLI::App& root);
+
+/// `facesketch eval contours`, a subcommand of `eval` (cmd_eval.cpp creates `eval`).
+void addEvalContoursCommand(CLI::App& eval);
+
+/// What `facesketch contours` draws (also used by `facesketch demo`).
+struct ContourPictureOptions {
+    std::string input;                ///< dataset folder or mesh file
+    std::string output = "contours";  ///< prefix of the PNGs
+    std::string view = "front";
+    int size = 1024;
+    int maxFaces = 230;
+    double suggestive = ContourParams{}.suggestiveThreshold;
+    double silhouette = -1;           ///< negative: the resolution-dependent default
+    bool perspective = false;
+};
+/// Writes PREFIX-face.png, -sketch.png, -cloud.png and -density.png; prints a summary.
+void writeContourPictures(const ContourPictureOptions& options);
 
 } // namespace facesketch::app

@@ -13,7 +13,12 @@ int main(int argc, char** argv)
     root.require_subcommand(1);
     app::addDemoCommand(root);
     app::addRenderCommand(root);
+    app::addContoursCommand(root);
     app::addBenchCommand(root);
+    app::addSynthCommand(root);
+    app::addImportCommand(root);
+    app::addTrainCommand(root);
+    app::addEvalCommand(root);
 
     try {
         root.parse(argc, argv);

@@ -1,0 +1,114 @@
+#pragma once
+// Internal to engine/dataset: the per-face frame of the synthetic face model (face_model.h),
+// i.e. everything derived from FaceParams once per face (landmark targets, the midline
+// profile, head widths, eyeballs, the grid's knot angles), and small shared helpers.
+// face_frame.cpp builds it; face_shape.cpp evaluates vertices with it.
+
+#include "core/error.h"
+#include "dataset/face_model.h"
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace facesketch::dataset::detail {
+
+inline double smoothstep(double e0, double e1, double x)
+{
+    const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
+    return t * t * (3 - 2 * t);
+}
+inline double fall(double t) { return 1 - smoothstep(0, 1, t); }
+inline double sq(double x) { return x * x; }
+inline double lerp(double a, double b, double t) { return a + (b - a) * t; }
+
+// C1 smooth maximum; equals max(a, b) when they differ by more than k.
+inline double smax(double a, double b, double k)
+{
+    const double h = std::max(k - std::abs(a - b), 0.0) / k;
+    return std::max(a, b) + h * h * k * 0.25;
+}
+
+// Fritsch-Carlson monotone cubic through (x[i], y[i]), x increasing; clamped outside.
+struct Monotone {
+    std::vector<double> x, y, m;
+
+    void build()
+    {
+        const size_t n = x.size();
+        std::vector<double> d(n - 1);
+        for (size_t i = 0; i + 1 < n; ++i) {
+            if (!(x[i + 1] > x[i]))
+                fail("synthetic face: profile knots not increasing at ", i, " (", x[i], ", ", x[i + 1], ")");
+            d[i] = (y[i + 1] - y[i]) / (x[i + 1] - x[i]);
+        }
+        m.assign(n, 0);
+        m[0] = d[0];
+        m[n - 1] = d[n - 2];
+        for (size_t i = 1; i + 1 < n; ++i)
+            m[i] = d[i - 1] * d[i] <= 0 ? 0 : (d[i - 1] + d[i]) / 2;
+        for (size_t i = 0; i + 1 < n; ++i) {
+            if (d[i] == 0) {
+                m[i] = m[i + 1] = 0;
+                continue;
+            }
+            const double a = m[i] / d[i], b = m[i + 1] / d[i], s = a * a + b * b;
+            if (s > 9) {
+                m[i] = 3 * a / std::sqrt(s) * d[i];
+                m[i + 1] = 3 * b / std::sqrt(s) * d[i];
+            }
+        }
+    }
+    double operator()(double t) const
+    {
+        if (t <= x.front())
+            return y.front() + m.front() * (t - x.front());
+        if (t >= x.back())
+            return y.back() + m.back() * (t - x.back());
+        const size_t i = static_cast<size_t>(std::upper_bound(x.begin(), x.end(), t) - x.begin()) - 1;
+        const double h = x[i + 1] - x[i], s = (t - x[i]) / h;
+        const double h00 = (1 + 2 * s) * sq(1 - s), h10 = s * sq(1 - s), h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);
+        return h00 * y[i] + h10 * h * m[i] + h01 * y[i + 1] + h11 * h * m[i + 1];
+    }
+};
+
+struct Eye {
+    Eigen::Vector3d centre, right, up, forward;
+    double a = 12, b = 12, c = 12; // semi-axes along right, up, forward
+};
+
+// Everything derived from FaceParams that the per-vertex evaluation needs.
+struct Frame {
+    FaceParams p;
+    Monotone depth; // horizontal depth of the midline, as a function of phi
+    Monotone width; // half width at theta = 90 degrees, as a function of phi
+    double zf = 88, yN = 8, ySn = -46, zSn = 89, yPrn = -42, zPrn = 109, ySto = -68, zSto = 88, yGn = -112,
+           zGn = 75, yPg = -100, zPg = 86;
+    double phiTopFront = 0.8, phiBrow = 0.2, phiN = 0.1, phiPrn = -0.4, phiSn = -0.5, phiLs = -0.6,
+           phiSto = -0.65, phiLi = -0.7, phiPg = -0.8, phiGn = -0.9, phiBottomFront = -1.3;
+    double noseTip = 20;          // radial height of the nose at prn
+    double thetaEn = 0.2, thetaEx = 0.6, thetaAl = 0.2, thetaCh = 0.3;
+    double rEye = 80;             // mm per radian near the eyes
+    double rMouth = 90;           // mm per radian of azimuth near the mouth
+    double mouthScale = 140;      // mm per radian of elevation near the mouth (midline height)
+    double xEye = 31;             // eyeball centre, base x
+    Eye eye[2];                   // right (-x), left (+x)
+};
+
+/// Height of the base midline at elevation phi (mm): the vertical coordinate of the mouth
+/// region, shared by every vertex of a grid row so lip features follow the rows.
+double midY(const Frame& f, double phi);
+/// Superellipse exponent of the head's horizontal sections at elevation phi.
+double exponent(const Frame& f, double phi);
+/// Horizontal distance from the vertical axis to the skin base (no features), mm.
+double rhoBase(const Frame& f, double theta, double phi);
+/// Unit direction of azimuth theta (0: +z, positive towards +x) and elevation phi (radians).
+Eigen::Vector3d direction(double theta, double phi);
+
+/// The frame of one face: targets from `p`, then the grid's knot angles solved on the skin.
+Frame makeFrame(const FaceParams& p);
+/// Skin radius of the neutral face along (theta, phi); defined in face_shape.cpp.
+double neutralRadius(const Frame& f, double theta, double phi);
+
+} // namespace facesketch::dataset::detail

@@ -1,0 +1,135 @@
+#include "dataset/face_params.h"
+
+#include <cmath>
+
+namespace facesketch::dataset {
+
+Rng::Rng(std::uint64_t seed) : engine_(seed) {}
+
+double Rng::uniform()
+{
+    return static_cast<double>(engine_() >> 11) * 0x1.0p-53;
+}
+
+double Rng::normal()
+{
+    if (hasSpare_) {
+        hasSpare_ = false;
+        return spare_;
+    }
+    double u = 0;
+    while (u <= 0)
+        u = uniform();
+    const double v = uniform();
+    const double radius = std::sqrt(-2.0 * std::log(u));
+    const double angle = 2.0 * M_PI * v;
+    spare_ = radius * std::sin(angle);
+    hasSpare_ = true;
+    return radius * std::cos(angle);
+}
+
+const std::vector<Norm>& farkasNorms()
+{
+    // Farkas LG, Anthropometry of the Head and Face, 2nd ed., 1994: North American Caucasian
+    // adults (19-25 years), mean and SD in mm, men then women.
+    static const std::vector<Norm> norms = {
+        {"ex-ex", "ex_r", "ex_l", 91.2, 3.0, 87.8, 3.2},   // biocular width
+        {"en-en", "en_r", "en_l", 33.3, 2.7, 31.8, 2.3},   // intercanthal width
+        {"al-al", "al_r", "al_l", 34.9, 2.1, 31.4, 2.0},   // nose width
+        {"ch-ch", "ch_r", "ch_l", 53.3, 3.3, 49.8, 3.2},   // mouth width
+        {"n-gn", "n", "gn", 121.3, 6.8, 112.8, 5.2},       // morphological face height
+        {"n-sn", "n", "sn", 54.8, 3.3, 50.6, 3.1},         // nose height
+        {"sn-sto", "sn", "sto", 22.3, 2.3, 19.9, 2.0},     // upper lip height
+    };
+    return norms;
+}
+
+namespace {
+
+// One Farkas measure with the shared size factor g (see face_params.h).
+double normDraw(const Norm& n, bool female, double g, double z)
+{
+    const double mean = female ? n.meanFemale : n.meanMale;
+    const double sd = female ? n.sdFemale : n.sdMale;
+    constexpr double rho = 0.45;
+    return mean + sd * (rho * g + std::sqrt(1 - rho * rho) * z);
+}
+
+} // namespace
+
+FaceParams sampleFaceParams(std::uint64_t seed, int index)
+{
+    // A separate stream per identity (splitmix-style mixing of seed and index).
+    std::uint64_t mixed = seed + 0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(index + 1);
+    mixed = (mixed ^ (mixed >> 30)) * 0xBF58476D1CE4E5B9ull;
+    mixed = (mixed ^ (mixed >> 27)) * 0x94D049BB133111EBull;
+    Rng rng(mixed ^ (mixed >> 31));
+
+    FaceParams p;
+    p.female = rng.uniform() < 0.5;
+    p.age = rng.uniform(20, 65);
+    const double g = rng.normal();
+    const double s = p.female ? 1.0 : 0.0; // 1 for women
+    const double aging = std::max(0.0, p.age - 30) / 35; // 0 young .. 1 at 65
+
+    const auto& norms = farkasNorms();
+    auto draw = [&](int i) { return normDraw(norms[static_cast<size_t>(i)], p.female, g, rng.normal()); };
+    p.exex = draw(0);
+    p.enen = draw(1);
+    p.alal = draw(2);
+    p.chch = draw(3);
+    p.ngn = draw(4);
+    p.nsn = draw(5);
+    p.snsto = draw(6);
+
+    auto n = [&](double mean, double sd) { return mean + sd * rng.normal(); };
+    p.tipProtrusion = n(20.5 - 1.5 * s, 1.8);
+    p.tipRise = n(4.5 - 1.5 * aging, 1.2);
+    p.dorsumHump = n(0.6 - 0.5 * s, 0.9);
+    p.bridgeWidth = n(6.5 - 0.5 * s, 0.6);
+    p.tipWidth = n(8.8 - 0.6 * s, 0.7);
+    p.alaSize = n(7.0 - 0.5 * s, 0.5);
+    p.nostrilSize = n(3.6 - 0.3 * s, 0.4);
+    p.nasionDepth = n(3.0 - 0.5 * s, 1.2);
+
+    p.upperVermilion = n(8.7 - 0.4 * s - 1.5 * aging, 1.2);
+    p.lowerVermilion = n(10.0 - 0.5 * s - 1.5 * aging, 1.3);
+    p.upperLipFullness = n(5.6 - 1.5 * aging, 0.8);
+    p.lowerLipFullness = n(6.2 - 1.5 * aging, 0.9);
+    p.lipProtrusion = n(2.0, 1.2);
+    p.cupidBow = n(1.0, 0.3);
+    p.philtrumDepth = n(0.9, 0.25);
+    p.cornerHeight = n(0.0 - 1.0 * aging, 0.8);
+
+    p.fissureHeight = n(10.8 - 1.2 * aging, 0.8);
+    p.canthalTilt = n(2.0 + 0.5 * s, 1.0);
+    p.eyeSet = n(6.5, 1.2);
+    p.browRidge = n(4.0 - 2.0 * s, 0.9);
+    p.browHeight = n(17.0 + 2.0 * s, 2.0);
+
+    p.faceDepth = n(88.0 - 3.0 * s, 3.0) + 1.5 * g;
+    p.foreheadSlope = n(8.0 - 4.0 * s, 4.0);
+    p.headBreadth = n(154.0 - 7.0 * s, 5.0) + 2.0 * g;
+    p.cheekboneWidth = n(139.1 - 8.2 * s, 5.3) + 2.0 * g;
+    p.cheekboneHeight = n(3.5, 1.0);
+    p.cheekFullness = n(2.5 - 1.5 * aging + 0.5 * s, 1.0);
+    p.jawWidth = n(104.0 - 7.4 * s, 5.5) + 2.0 * g;
+    p.jawAngle = n(0.3 - 0.5 * s, 0.4);
+    p.chinProjection = n(-2.0 - 1.0 * s, 3.0);
+    p.chinWidth = n(15.0 - 1.5 * s, 1.8);
+    p.chinHeight = n(2.5 - 0.8 * s, 0.8);
+    p.neckWidth = n(115.0 - 15.0 * s, 6.0);
+
+    // Fine detail: a few low bumps spread over the face, so no two faces are smooth copies.
+    for (int i = 0; i < 14; ++i) {
+        DetailBump b;
+        b.theta = rng.uniform(-0.9, 0.9);
+        b.phi = rng.uniform(-0.85, 0.75);
+        b.radius = rng.uniform(0.06, 0.16);
+        b.height = 0.45 * rng.normal();
+        p.detail.push_back(b);
+    }
+    return p;
+}
+
+} // namespace facesketch::dataset

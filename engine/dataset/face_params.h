@@ -1,0 +1,115 @@
+#pragma once
+// Conformation parameters of one synthetic adult face and their population model.
+//
+// Linear proportions follow published adult anthropometric norms:
+//   Farkas LG. Anthropometry of the Head and Face, 2nd ed. Raven Press, New York, 1994
+//   (North American Caucasians aged 19-25; means and standard deviations by sex).
+// Every linear measure is drawn as  mean(sex) + sd(sex) * (0.45 g + sqrt(1 - 0.45^2) z),
+// where g is one "overall size" factor shared by the face and z is the measure's own
+// standard normal, so each measure keeps the norm's mean and SD while sizes correlate.
+// Age (uniform 20..65 years) thins the lips, lengthens and drops the nose and narrows the
+// eye opening; sex shifts means and brow, jaw and chin prominence.
+//
+// Randomness: std::mt19937_64 (its output sequence is fixed by the C++ standard) and our own
+// Box-Muller normal, so identical seeds give identical faces on every standard library.
+
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace facesketch::dataset {
+
+/// Portable, deterministic random numbers (std::normal_distribution differs between libraries).
+class Rng {
+public:
+    explicit Rng(std::uint64_t seed);
+    /// Uniform in [0, 1) with 53 random bits.
+    double uniform();
+    /// Uniform in [lo, hi).
+    double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
+    /// Standard normal (Box-Muller; the second value of each pair is kept for the next call).
+    double normal();
+
+private:
+    std::mt19937_64 engine_;
+    double spare_ = 0;
+    bool hasSpare_ = false;
+};
+
+/// One adult anthropometric norm: a distance between two landmarks, mean and SD in mm by sex.
+struct Norm {
+    const char* name;  ///< e.g. "ex-ex"
+    const char* from;  ///< landmark names in the dataset, e.g. "ex_r"
+    const char* to;    ///< e.g. "ex_l"
+    double meanMale, sdMale, meanFemale, sdFemale;
+};
+
+/// The Farkas (1994) norms the generator reproduces and the tests check: ex-ex, en-en, al-al,
+/// ch-ch, n-gn, n-sn, sn-sto.
+const std::vector<Norm>& farkasNorms();
+
+/// A small radial bump of "fine random detail", in the face chart (see face_model.h).
+struct DetailBump {
+    double theta, phi;   ///< centre, radians
+    double radius;       ///< radians
+    double height;       ///< mm, signed
+};
+
+/// Conformation of one face; lengths in mm, angles in degrees unless noted.
+struct FaceParams {
+    bool female = false;
+    double age = 30;
+
+    // Farkas-targeted distances.
+    double exex = 91, enen = 33, alal = 35, chch = 53, ngn = 121, nsn = 55, snsto = 22;
+
+    // Nose.
+    double tipProtrusion = 20;  ///< sn to prn, forward
+    double tipRise = 4;         ///< prn above sn
+    double dorsumHump = 0;      ///< mm of convexity on the dorsum (negative: concave)
+    double bridgeWidth = 6;     ///< half width of the dorsum
+    double tipWidth = 9;        ///< half width of the lobule
+    double alaSize = 7;         ///< radius of an alar lobule
+    double nostrilSize = 3.5;   ///< half length of a nostril
+    double nasionDepth = 0;     ///< nasion set back (+) from glabella line
+
+    // Lips and mouth.
+    double upperVermilion = 8.5; ///< ls-sto
+    double lowerVermilion = 9.5; ///< sto-li
+    double upperLipFullness = 5; ///< radial bulge
+    double lowerLipFullness = 6;
+    double lipProtrusion = 2;
+    double cupidBow = 1;
+    double philtrumDepth = 0.8;
+    double cornerHeight = 0;     ///< mouth corners above (+) the slit line
+
+    // Eyes and brows.
+    double fissureHeight = 10.5;
+    double canthalTilt = 2;
+    double eyeSet = 7;           ///< eyeball front behind the face envelope
+    double browRidge = 3;
+    double browHeight = 18;      ///< eyebrow above the canthal line
+
+    // Overall shape.
+    double faceDepth = 88;       ///< nasion distance in front of the head centre
+    double foreheadSlope = 0;    ///< degrees backwards
+    double headBreadth = 152;
+    double cheekboneWidth = 136; ///< zy-zy
+    double cheekboneHeight = 4;  ///< radial prominence
+    double cheekFullness = 2;
+    double jawWidth = 102;       ///< go-go
+    double jawAngle = 0;         ///< squareness (-1..1 roughly)
+    double chinProjection = 0;   ///< pg forward of the sn-vertical
+    double chinWidth = 14;
+    double chinHeight = 0;       ///< extra chin boss height (mm)
+    double neckWidth = 110;
+
+    std::vector<DetailBump> detail;
+};
+
+/// The face of identity `index` in the population of `seed`: identity i's parameters depend
+/// only on (seed, i), so datasets of different sizes share their first faces.
+FaceParams sampleFaceParams(std::uint64_t seed, int index);
+
+} // namespace facesketch::dataset

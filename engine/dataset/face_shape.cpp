@@ -1,0 +1,438 @@
+// Vertices of the synthetic face (face_model.h) from its frame (face_frame.h): the star-shaped
+// skin r(theta, phi) as base + bone (nose, brows, sockets, cheekbones, chin) + soft tissue
+// (lips, philtrum, cheeks, eyebrows, detail), eyelids resting on the eyeballs, the pose
+// deformers that slide skin over that structure and turn the jaw, and the eyeball, teeth and
+// tongue meshes.
+//
+// Sources: proportions from Farkas LG, Anthropometry of the Head and Face, 2nd ed., 1994
+// (face_params.cpp); the landmark set of thesis Table 3.1; the 36 poses of thesis 5.2.
+#include "dataset/face_model.h"
+
+#include "dataset/face_frame.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+namespace facesketch::dataset {
+
+using namespace detail;
+
+namespace {
+
+constexpr double kSide = 100.0 * M_PI / 180.0; // the grid reaches 10 degrees behind the ears
+
+// Radial height of nose, brows, sockets, cheekbones and chin: the parts that do not slide.
+double bone(const Frame& f, double theta, double phi, double X, double Y, const FaceActions& act)
+{
+    const FaceParams& p = f.p;
+    const double ax = std::abs(X);
+    double r = 0;
+
+    // Nose: a midline height profile over phi (columella, rounded lobule, dorsum with hump),
+    // a flat-topped, steep-sided cross-section, alar lobules and nostril pits.
+    double body = 0;
+    if (phi > f.phiSn && phi < f.phiN) {
+        double height, halfWidth;
+        if (phi <= f.phiPrn) {
+            const double u = 1 - (phi - f.phiSn) / (f.phiPrn - f.phiSn);
+            height = f.noseTip * (1 - std::pow(u, 1.8));
+            halfWidth = p.tipWidth;
+        } else {
+            const double t = (phi - f.phiPrn) / (f.phiN - f.phiPrn);
+            height = f.noseTip * sq(1 - t) * (1 + 2 * t) + p.dorsumHump * sq(std::sin(M_PI * t)) * smoothstep(0, 0.3, t);
+            halfWidth = lerp(p.tipWidth, p.bridgeWidth, smoothstep(0, 0.55, t)) + 2.5 * smoothstep(0.6, 1, t);
+        }
+        const double x = ax / (halfWidth * 1.6);
+        const double cross = x < 1 ? 0.88 * std::pow(1 - x * x, 1.3) : 0;
+        body = height * (cross + 0.12 * std::exp(-sq(X / (2.4 * halfWidth))));
+    }
+    const double ra = p.alaSize * (1 + 0.04 * act.noseWrinkle);
+    const double alaX = p.alal / 2 - ra;
+    const double alaY = lerp(f.ySn, f.yPrn, 0.55) + 0.6 * act.noseWrinkle;
+    const double da = sq((ax - alaX) / ra) + sq((Y - alaY) / (0.85 * ra));
+    const double ala = da < 1 ? (0.34 * f.noseTip + 2.0) * std::pow(1 - da, 1.1) : 0;
+    r += smax(body, ala, 6.0);
+    const double phiNostril = lerp(f.phiSn, f.phiPrn, 0.4);
+    const double dn = sq((ax - 0.45 * p.alal / 2) / (0.8 * p.nostrilSize)) + sq((phi - phiNostril) / (0.25 * (f.phiPrn - f.phiSn)));
+    if (dn < 1)
+        r -= 0.3 * f.noseTip * sq(1 - dn);
+
+    // Brow ridge over each orbit, and the glabella between them.
+    const double browLateral = smoothstep(4, 14, ax) * (1 - smoothstep(p.exex / 2, p.exex / 2 + 18, ax));
+    r += p.browRidge * std::exp(-sq((Y - (p.browHeight - 5)) / 8)) * browLateral;
+    r += 0.35 * p.browRidge * std::exp(-sq(X / 9) - sq((Y - (f.yN + 11)) / 8));
+    // Orbital socket: the face sinks around the eyeball so the lids drape over it.
+    const double ds = sq((ax - f.xEye) / 21) + sq((Y - 1) / 15);
+    if (ds < 1)
+        r -= 8 * sq(1 - ds);
+    r += p.cheekboneHeight * std::exp(-sq((ax - 0.36 * p.cheekboneWidth) / 16) - sq((Y + 20) / 14));
+    r += p.chinHeight * std::exp(-sq(X / p.chinWidth) - sq((Y - f.yPg) / 12));
+    // Mentolabial sulcus between the lower lip and the chin.
+    r -= (1.5 + 0.3 * p.lowerLipFullness) * std::exp(-sq(X / 17) - sq((Y - lerp(f.ySto - p.lowerVermilion, f.yPg, 0.45)) / 5));
+    (void)theta;
+    return r;
+}
+
+// Which side of the mouth line a point is on, smoothly outside the mouth: 1 above, 0 below.
+// `a` is the position across the mouth (-1 and 1 at the corners), b mm above the slit row.
+double upperWeight(const Frame& f, double a, double b, int slit)
+{
+    // Outside the mouth a smooth step across the mouth line, leaning upwards so the corners
+    // follow the jaw only a little; inside, a clean split along the slit that blends into the
+    // outside step over the last 40% towards each corner (so corner triangles do not shear).
+    const double band = 2.5 + 0.9 * std::max(0.0, (std::abs(a) - 1) * f.p.chch / 2);
+    const double outside = smoothstep(-1.4 * band, 0.6 * band, b);
+    if (std::abs(a) >= 1 - 1e-9)
+        return outside;
+    const bool upper = b > 1e-9 || (std::abs(b) <= 1e-9 && slit >= 0);
+    const double corner = smoothstep(0.6, 1.0, std::abs(a));
+    return upper ? 1 - corner * (1 - outside) : corner * outside;
+}
+
+// Soft tissue, evaluated where the vertex sits in the neutral face so it moves with the skin:
+// lips, philtrum, cheeks, eyebrows, fine detail, and the pose's radial offsets.
+double soft(const Frame& f, double theta0, double phi0, double X, double Y, int slit, const FaceActions& act)
+{
+    const FaceParams& p = f.p;
+    const double ax = std::abs(X), half = p.chch / 2;
+    const double b = midY(f, phi0) - f.ySto, a = theta0 / f.thetaCh;
+    double r = 0;
+
+    // Lips: vermilion bulges meeting in a groove at the slit, thinning to the corners.
+    const bool upper = b > 1e-9 || (std::abs(b) <= 1e-9 && slit >= 0);
+    const double press = 1 - 0.55 * act.lipPress;
+    if (std::abs(a) < 1) {
+        const double taper = std::sqrt(1 - a * a);
+        if (upper) {
+            const double h = p.upperVermilion * (0.3 + 0.7 * taper) *
+                             (1 - 0.1 * p.cupidBow * std::exp(-sq(a / 0.09)) + 0.05 * p.cupidBow * std::exp(-sq((std::abs(a) - 0.22) / 0.1)));
+            const double t = b / h;
+            double shape;
+            if (t < 0.55)
+                shape = -0.35 + 1.35 * (1 - sq(1 - t / 0.55));
+            else if (t < 1)
+                shape = 1 - 0.3 * sq((t - 0.55) / 0.45);
+            else
+                shape = 0.7 * std::exp(-sq((t - 1) * h / 7));
+            r += p.upperLipFullness * press * std::pow(taper, 0.7) * shape;
+        } else {
+            const double h = p.lowerVermilion * (0.3 + 0.7 * taper);
+            const double t = -b / h;
+            double shape;
+            if (t < 0.5)
+                shape = -0.35 + 1.35 * (1 - sq(1 - t / 0.5));
+            else if (t < 1)
+                shape = 1 - 0.45 * sq((t - 0.5) / 0.5);
+            else
+                shape = 0.55 * std::exp(-sq((t - 1) * h / 6));
+            r += (p.lowerLipFullness * press - act.lowerLipTuck) * std::pow(taper, 0.7) * shape;
+        }
+    }
+    r -= 1.0 * std::exp(-sq((ax - half) / 4) - sq(b / 4)); // commissure
+    r += act.lipsForward * std::exp(-std::pow(X / (half + 4), 4) - std::pow((b + 1) / 13, 4));
+
+    // Philtrum: a groove between two ridges from the vermilion border to the nose.
+    const double snB = f.ySn - f.ySto;
+    const double window = smoothstep(p.upperVermilion * 0.9, p.upperVermilion * 1.3, b) * (1 - smoothstep(snB - 5, snB, b));
+    r += p.philtrumDepth * window * (0.35 * std::exp(-sq((ax - 5) / 1.8)) - std::exp(-sq(X / 2.6)));
+
+    // Cheeks, eyebrows, nose wrinkles.
+    r += p.cheekFullness * std::exp(-sq((ax - (half + 17)) / 15) - sq((b - 12) / 16));
+    r += act.cheekPuff * std::exp(-sq((ax - (half + 13)) / 14) - sq((b - 2) / 15));
+    r += act.cheekRaise * std::exp(-sq((ax - (half + 12)) / 12) - sq((b - 24) / 11));
+    const double browLateral = smoothstep(p.enen / 2 - 4, p.enen / 2 + 2, ax) * (1 - smoothstep(p.exex / 2 + 2, p.exex / 2 + 10, ax));
+    r += 1.0 * browLateral * std::exp(-sq((Y - p.browHeight) / 3.5));
+    r += 0.8 * act.noseWrinkle * std::exp(-sq((ax - 9) / 5) - sq((Y - (f.yN - 14)) / 7));
+
+    for (const DetailBump& d : p.detail)
+        r += d.height * std::exp(-(sq(theta0 - d.theta) + sq(phi0 - d.phi)) / sq(d.radius));
+    return r;
+}
+
+// Radial distance along direction d at which the lid must stay above eyeball `e` (plus a
+// decaying continuation just outside the eyeball's silhouette), or -1e9 far from it.
+double eyeCover(const Eye& e, const Eigen::Vector3d& d, bool* hit = nullptr)
+{
+    const Eigen::Vector3d o = -e.centre;
+    const Eigen::Vector3d ol(o.dot(e.right) / e.a, o.dot(e.up) / e.b, o.dot(e.forward) / e.c);
+    const Eigen::Vector3d dl(d.dot(e.right) / e.a, d.dot(e.up) / e.b, d.dot(e.forward) / e.c);
+    const double dd = dl.squaredNorm();
+    const double tc = -ol.dot(dl) / dd;
+    const double m2 = (ol + tc * dl).squaredNorm();
+    if (hit)
+        *hit = m2 <= 1;
+    if (m2 <= 1)
+        return tc + std::sqrt((1 - m2) / dd);
+    return tc - 6.0 * (std::sqrt(m2) - 1) * e.b;
+}
+
+struct ChartPoint {
+    double theta, phi;
+    double jaw; // 0..1, how much of the jaw rotation this vertex follows
+};
+
+// Moves a vertex across the underlying structure: eyelids, brows, lips and lip corners.
+ChartPoint warp(const Frame& f, double theta0, double phi0, int slit, bool eyeRow, const FaceActions& act)
+{
+    const FaceParams& p = f.p;
+    double dTheta = 0, dPhi = 0;
+    const int side = theta0 >= 0 ? 1 : 0; // index into [right, left]
+    const double sign = theta0 >= 0 ? 1 : -1;
+    const double R = f.rEye;
+
+    // Eye: open the slit into an almond, tilt it, close or widen it, raise the lower lid.
+    const double a = (std::abs(theta0) - f.thetaEn) / (f.thetaEx - f.thetaEn);
+    const double b = phi0;
+    const double tilt = p.canthalTilt / R * (a <= 0 ? 0 : a <= 1 ? a : 1 - smoothstep(1, 1.8, a));
+    dPhi += tilt * (1 - smoothstep(0, 28 / R, std::abs(b)));
+    if (a > 0 && a < 1) {
+        const double shape = std::pow(std::sin(M_PI * a), 0.8);
+        const double minGap = 0.5 / R * shape;
+        double up = 0.58 * p.fissureHeight / R * shape * (1 + act.lidWide);
+        const double lo0 = 0.42 * p.fissureHeight / R * shape;
+        up -= act.lidClose[side] * (up + lo0 - minGap);
+        const double lo = std::max(lo0 - act.lowerLidRaise / R * shape, minGap - up);
+        const bool above = b > 1e-12 || (std::abs(b) <= 1e-12 && (slit >= 0 || !eyeRow));
+        if (above)
+            dPhi += up * fall(b / ((p.browHeight + 4) / R));
+        else
+            dPhi -= lo * fall(-b / (13 / R));
+    }
+    // Brows: inner and outer raise, lowering (with a pull towards the midline).
+    const double q = smoothstep(-0.2, 1.2, a);
+    const double lift = act.browInnerRaise * (1 - q) + act.browOuterRaise * q - act.browLower;
+    const double vertical = smoothstep(3 / R, (p.browHeight + 10) / R, b) * (1 - smoothstep((p.browHeight + 12) / R, (p.browHeight + 45) / R, b));
+    const double lateral = 1 - smoothstep(f.thetaEx + 5 / R, f.thetaEx + 30 / R, std::abs(theta0));
+    dPhi += lift / R * vertical * lateral;
+    dTheta -= sign * act.browLower * 0.25 / R * vertical * lateral * smoothstep(0, f.thetaEn, std::abs(theta0));
+
+    // Mouth. Positions in mm relative to the stomion at the neutral face.
+    const double Rm = f.mouthScale;
+    const double half = p.chch / 2, am = theta0 / f.thetaCh, X = am * half, bm = midY(f, phi0) - f.ySto;
+    const double wu = upperWeight(f, am, bm, slit);
+    // Skin pulled by the lip muscles must not climb onto the nose's steep base.
+    const double belowNose = 1 - smoothstep(f.ySn - f.ySto - 16, f.ySn - f.ySto - 1, bm);
+    if (std::abs(am) < 1 - 1e-9) {
+        const double shape = std::pow(1 - am * am, 0.6);
+        const double raise = lerp(act.upperLipRaise[0], act.upperLipRaise[1], smoothstep(-0.6, 0.6, am));
+        const double gap = 0.25;
+        const double up = (gap + 0.4 * act.lipPart + 0.6 * raise) / Rm * shape;
+        const double lo = (gap + 0.6 * act.lipPart + act.lowerLipDepress) / Rm * shape;
+        dPhi += wu * up * fall(std::max(bm, 0.0) / ((f.ySn - f.ySto) * 0.8)) * belowNose - (1 - wu) * lo * fall(std::max(-bm, 0.0) / 16);
+    }
+    for (int s = 0; s < 2; ++s) {
+        const double sx = s == 1 ? 1 : -1;
+        const double k = std::exp(-sq((X - sx * half) / 16) - sq(bm / 16)) * belowNose;
+        dPhi += (0.5 * act.cornerPull[s] - act.cornerDepress[s]) / Rm * k;
+        dTheta += sx * (0.8 * act.cornerPull[s] + act.mouthStretch) / f.rMouth * k;
+        dPhi += wu * act.upperLipRaise[s] / Rm * std::exp(-sq((X - sx * half / 2) / 12) - sq((bm - 6) / 9)) * belowNose;
+    }
+    dTheta -= 0.35 * act.pucker * theta0 * std::exp(-std::pow(X / (half + 10), 4) - std::pow(bm / 18, 4)) * belowNose;
+
+    // Jaw: everything below the mouth line follows (the mask ends just under the chin, so the
+    // submental skin moves with the mandible), fading out towards the ears.
+    double jaw = 1 - wu;
+    jaw *= 1 - smoothstep(0.8, 1.75, std::abs(theta0));
+    return {theta0 + dTheta, phi0 + dPhi, jaw};
+}
+
+// Everything about one vertex's skin radius.
+double skinRadius(const Frame& f, double theta, double phi, double theta0, double phi0, int slit, const FaceActions& act,
+                  bool eyeMargin = false)
+{
+    const double rho = rhoBase(f, theta, phi);
+    const double X = rho * std::sin(theta), Y = rho * std::tan(phi);
+    const double rho0 = rhoBase(f, theta0, phi0);
+    const double X0 = rho0 * std::sin(theta0), Y0 = rho0 * std::tan(phi0);
+    const double face = rho / std::cos(phi) + bone(f, theta, phi, X, Y, act) + soft(f, theta0, phi0, X0, Y0, slit, act);
+    const Eigen::Vector3d d = direction(theta, phi);
+    const Eye& e = f.eye[theta >= 0 ? 1 : 0];
+    bool hit = false;
+    const double cover = eyeCover(e, d, &hit);
+    // A lid margin rests on the eyeball wherever one is behind it, so no gap opens between
+    // lid and eye when seen from the side.
+    if (eyeMargin && hit)
+        return cover + 0.6;
+    // Elsewhere the lid is thicker than at its margin, which also keeps the chords of coarse
+    // triangles clear of the eyeball.
+    return smax(face, cover + (eyeMargin ? 0.6 : 1.2), 1.0);
+}
+
+} // namespace
+
+double detail::neutralRadius(const Frame& f, double theta, double phi)
+{
+    return skinRadius(f, theta, phi, theta, phi, 0, FaceActions{});
+}
+
+namespace {
+
+// Piecewise-linear map from column offset to azimuth through (offset, angle) knots.
+double columnTheta(const std::vector<std::pair<double, double>>& knots, double s)
+{
+    const double as = std::abs(s);
+    for (size_t i = 0; i + 1 < knots.size(); ++i)
+        if (as <= knots[i + 1].first) {
+            const double t = (as - knots[i].first) / (knots[i + 1].first - knots[i].first);
+            return (s < 0 ? -1 : 1) * lerp(knots[i].second, knots[i + 1].second, t);
+        }
+    return (s < 0 ? -1 : 1) * knots.back().second;
+}
+
+} // namespace
+
+Vertices synthesizeFace(const FaceTopology& t, const FaceParams& params, const FaceActions& act)
+{
+    const Frame f = makeFrame(params);
+    const int half = t.mid;
+    const std::vector<std::pair<double, double>> eyeKnots = {{0, 0}, {t.sEn, f.thetaEn}, {t.sEx, f.thetaEx}, {half, kSide}};
+    const std::vector<std::pair<double, double>> noseKnots = {{0, 0}, {t.sEn, f.thetaAl}, {t.sEx, f.thetaEx}, {half, kSide}};
+    const std::vector<std::pair<double, double>> mouthKnots = {{0, 0}, {t.sCh, f.thetaCh}, {t.sEx, f.thetaEx}, {half, kSide}};
+    const std::vector<double> phiKnots = {0, f.phiBrow, f.phiN, 0, f.phiPrn, f.phiSn, f.phiLs, f.phiSto, f.phiLi, f.phiPg, f.phiGn, 0};
+    const auto& K = t.rowKnot;
+
+    auto chart = [&](int row, int col) {
+        const double s = col - t.mid;
+        const double te = columnTheta(eyeKnots, s), tn = columnTheta(noseKnots, s), tm = columnTheta(mouthKnots, s);
+        double theta;
+        if (row <= K[3])
+            theta = te;
+        else if (row <= K[4])
+            theta = lerp(te, tn, double(row - K[3]) / (K[4] - K[3]));
+        else if (row <= K[7])
+            theta = lerp(tn, tm, double(row - K[4]) / (K[7] - K[4]));
+        else
+            theta = tm;
+        const double side = smoothstep(0.5, 1.6, std::abs(theta));
+        const double top = lerp(f.phiTopFront, 0.42, side);
+        const double bottom = lerp(f.phiBottomFront, std::min(-1.0, f.phiGn - 0.15), smoothstep(0.4, 1.3, std::abs(theta)));
+        double phi;
+        if (row <= K[1])
+            phi = lerp(top, f.phiBrow, double(row) / K[1]);
+        else if (row >= K[10])
+            phi = lerp(f.phiGn, bottom, double(row - K[10]) / (K[11] - K[10]));
+        else {
+            size_t k = 1;
+            while (row > K[k + 1])
+                ++k;
+            phi = lerp(phiKnots[k], phiKnots[k + 1], double(row - K[k]) / (K[k + 1] - K[k]));
+        }
+        return std::pair<double, double>(theta, phi);
+    };
+
+    Vertices V(t.labels.vertexCount, 3);
+    const Eigen::Vector3d pivot(0, -22, f.zf - 88);
+    const double jawAngle = act.jawOpen * M_PI / 180;
+    auto jawMove = [&](const Eigen::Vector3d& x, double weight) -> Eigen::Vector3d {
+        const double angle = jawAngle * weight;
+        const Eigen::Vector3d rel = x - pivot;
+        const double c = std::cos(angle), s = std::sin(angle);
+        // Rotation about +x moving the chin down and back, plus the condyles' forward glide.
+        const Eigen::Vector3d turned(rel.x(), rel.y() * c - rel.z() * s, rel.y() * s + rel.z() * c);
+        return turned + pivot + Eigen::Vector3d(0, 0, 0.35 * angle * 40);
+    };
+
+    for (size_t i = 0; i < t.skin.size(); ++i) {
+        const SkinVertex& sv = t.skin[i];
+        const auto [theta0, phi0] = chart(sv.row, sv.col);
+        const ChartPoint cp = warp(f, theta0, phi0, sv.slit, sv.row == K[3], act);
+        const double r = skinRadius(f, cp.theta, cp.phi, theta0, phi0, sv.slit, act, sv.slit != 0 && sv.row == K[3]);
+        const Eigen::Vector3d x = jawMove(r * direction(cp.theta, cp.phi), cp.jaw);
+        V.row(static_cast<Eigen::Index>(i)) = x.transpose();
+    }
+
+    // Eyeballs: UV ellipsoids in each eye's frame, poles along its up axis.
+    const Component* eyes[2] = {t.labels.component("eye_right"), t.labels.component("eye_left")};
+    for (int s = 0; s < 2; ++s) {
+        const Eye& e = f.eye[s];
+        int v = eyes[s]->begin;
+        // The mesh sits 0.6 mm inside the ellipsoid the lids rest on, so even coarse lid
+        // triangles (whose chords sag towards the eye) keep clear of it.
+        const double a = e.a - 0.6, b = e.b - 0.6, c = e.c - 0.6;
+        auto put = [&](double polar, double azimuth) {
+            const Eigen::Vector3d x = e.centre + a * std::sin(polar) * std::sin(azimuth) * e.right +
+                                      b * std::cos(polar) * e.up + c * std::sin(polar) * std::cos(azimuth) * e.forward;
+            V.row(v++) = x.transpose();
+        };
+        put(0, 0);
+        for (int i = 1; i <= t.eyeRings; ++i)
+            for (int j = 0; j < t.eyeSegments; ++j)
+                put(M_PI * i / (t.eyeRings + 1), 2 * M_PI * j / t.eyeSegments);
+        put(M_PI, 0);
+    }
+
+    // Dental arches: tubes along a parabola a few mm behind the lips; the lower arch and the
+    // tongue follow the jaw.
+    const double zFront = f.depth(f.phiSto) - 4.0;
+    const double yOcclusal = f.ySto - 0.5;
+    const double archHalf = 21 + 0.1 * (params.jawWidth - 100), archDepth = 30;
+    double lowerShift = 0; // how far a retruded chin pushed the lower arch back (<= 0)
+    for (int lower = 0; lower < 2; ++lower) {
+        const Component* c = t.labels.component(lower ? "teeth_lower" : "teeth_upper");
+        const double scale = lower ? 0.94 : 1.0;
+        // Short or retruded chins: the lower incisors stay above the chin and behind its skin.
+        const double height = lower ? std::clamp(yOcclusal - 0.7 - (f.yPg + 4), 5.0, 8.5) : 9.5;
+        const double yMid = lower ? yOcclusal - 0.7 - height / 2 : yOcclusal + 0.7 + height / 2;
+        double zArch = zFront - (lower ? 1.5 : 0);
+        if (lower) {
+            double lo = f.phiGn, hi = f.phiSto; // elevation of the lower teeth's bottom on the midline
+            for (int k = 0; k < 50; ++k) {
+                const double m = (lo + hi) / 2;
+                (midY(f, m) < yMid - height / 2 ? lo : hi) = m;
+            }
+            zArch = std::min(zArch, f.depth(lo) - 4.0);
+            lowerShift = zArch - (zFront - 1.5);
+        }
+        std::vector<Eigen::Vector3d> points;
+        for (int i = 0; i < t.archSamples; ++i) {
+            const double u = -1 + 2.0 * i / (t.archSamples - 1);
+            const double thick = lerp(6.0, 9.5, u * u);
+            const Eigen::Vector3d centre(scale * archHalf * u, yMid, zArch - thick / 2 - archDepth * u * u);
+            const Eigen::Vector3d tangent = Eigen::Vector3d(scale * archHalf, 0, -2 * archDepth * u).normalized();
+            const Eigen::Vector3d normal = Eigen::Vector3d(0, 1, 0).cross(tangent).normalized();
+            for (int j = 0; j < t.archSection; ++j) {
+                const double g = 2 * M_PI * j / t.archSection;
+                // A rounded box: superellipse section, taller than thick.
+                const double cg = std::cos(g), sg = std::sin(g);
+                const double cy = std::copysign(std::pow(std::abs(cg), 0.6), cg), sz = std::copysign(std::pow(std::abs(sg), 0.6), sg);
+                points.push_back(centre + height / 2 * cy * Eigen::Vector3d(0, 1, 0) + thick / 2 * sz * normal);
+            }
+        }
+        auto centreAt = [&](int i) {
+            Eigen::Vector3d m = Eigen::Vector3d::Zero();
+            for (int j = 0; j < t.archSection; ++j)
+                m += points[static_cast<size_t>(i * t.archSection + j)];
+            return Eigen::Vector3d(m / t.archSection);
+        };
+        std::vector<Eigen::Vector3d> all;
+        all.push_back(centreAt(0) - 0.8 * (centreAt(1) - centreAt(0)).normalized());
+        all.insert(all.end(), points.begin(), points.end());
+        const int last = t.archSamples - 1;
+        all.push_back(centreAt(last) + 0.8 * (centreAt(last) - centreAt(last - 1)).normalized());
+        for (size_t k = 0; k < all.size(); ++k) {
+            const Eigen::Vector3d x = lower ? jawMove(all[k], 1.0) : all[k];
+            V.row(c->begin + static_cast<Eigen::Index>(k)) = x.transpose();
+        }
+    }
+
+    // Tongue: a flattened ellipsoid lying in the lower arch, its tip narrowed.
+    const Component* tongue = t.labels.component("tongue");
+    const Eigen::Vector3d tongueCentre(0, yOcclusal - 8 + std::min(act.tongueUp, 3.0),
+                                       zFront - 28 + lowerShift + std::min(act.tongueForward, 2.5));
+    int v = tongue->begin;
+    auto putTongue = [&](double polar, double azimuth) {
+        const double z = std::sin(polar) * std::cos(azimuth);
+        const double narrow = 1 - 0.3 * std::max(0.0, z);
+        const Eigen::Vector3d local(10.5 * narrow * std::sin(polar) * std::sin(azimuth), 5.0 * std::cos(polar), 16.5 * z);
+        V.row(v++) = jawMove(tongueCentre + local, 1.0).transpose();
+    };
+    putTongue(0, 0);
+    for (int i = 1; i <= t.tongueRings; ++i)
+        for (int j = 0; j < t.tongueSegments; ++j)
+            putTongue(M_PI * i / (t.tongueRings + 1), 2 * M_PI * j / t.tongueSegments);
+    putTongue(M_PI, 0);
+    return V;
+}
+
+} // namespace facesketch::dataset

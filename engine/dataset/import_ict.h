@@ -1,0 +1,125 @@
+#pragma once
+// `facesketch import ict-facekit PATH`: a standardised dataset (thesis 3.1) sampled from the
+// ICT Face Model Light (ICT-FaceKit, USC Institute for Creative Technologies, MIT licence:
+// https://github.com/ICT-VGL/ICT-FaceKit), read in its original layout.
+//
+// Input. PATH is the ICT-FaceKit folder (or its FaceXModel/ folder) holding
+// `FaceXModel/generic_neutral_mesh.obj` (26,719 vertices, quads, centimetres, +y up, looking
+// down +z, +x the face's left), `identity000.obj`, `identity001.obj`, ... (the neutral moved one
+// standard deviation along each identity mode), ARKit-named expression shapes (`jawOpen.obj`,
+// `mouthSmile_L.obj`, ...) and optionally `vertex_indices.json` (its `idx_to_landmark_verts`
+// gives the 68 Multi-PIE landmarks; without it the index list of ICT-FaceKit's README is used).
+// Only the neutral's faces are read; every other file contributes its `v` lines only (files cut
+// down to `v` lines are accepted) and must have the neutral's vertex count.
+//
+// Identities. Identity j is neutral + sum_i c_ji (identity_i - neutral) with c_ji ~ N(0, 1),
+// drawn from std::mt19937_64 seeded by (seed, j) through SplitMix64, and the Box-Muller
+// transform (written out here because std::normal_distribution differs between standard
+// libraries). Identity j does not depend on how many identities are drawn. Units become mm.
+//
+// Region. The skin is a prefix of ICT's vertex order (README "Regions"): narrow face
+// [0, 6706), face [0, 9409) or head and neck [0, 11248). --with-eyes adds the eye sockets and
+// eyeballs, --with-mouth the mouth socket, gums and tongue (one connected mesh in ICT, so one
+// component "gums_tongue") and the upper and lower teeth. Triangles are those of the neutral
+// (quads split in a fan) whose three vertices are kept. Socket vertices are "excluded"
+// (inside the head, never contour candidates).
+//
+// Labels (names as docs/dataset-format.md). Landmarks come from the Multi-PIE points (0-based
+// iBUG numbering; 0..16 jaw line from the face's right, 17..21 right brow, 22..26 left brow,
+// 27..30 nasal bridge, 31..35 nose base, 36..41 right eye, 42..47 left eye, 48..59 outer lips,
+// 60..67 inner lips) where one exists, else by geometric rules on the neutral:
+//   ex/en = 36, 39, 42, 45; ch = 48, 54; ls = 51; li = 57; sto = 62; sn = 33; sbal = 31, 35;
+//   cph = 50, 52; n = 27; cs1 = 29; gn = 8; obs = 0, 16 (top of the jaw line, by the ear);
+//   prn = the skin vertex within 1 cm of point 30 whose largest distance to the most forward
+//   skin vertex of each of 64 identities (seed 0) is smallest (the tip moves between people;
+//   forward is the face's own, (ex_l - ex_r) x (n - gn), as heads are pitched differently);
+//   g = the most forward midline vertex between n and 1 cm above the brows' inner ends;
+//   s = the deepest (least z) midline vertex between cs1 and g;
+//   pg = the most forward midline vertex between gn and 5 mm below li; sl = the deepest
+//   midline vertex between pg and li;
+//   ps/pi = the highest / lowest vertex of the upper / lower lid contour;
+//   os = the eyebrow contour vertex nearest ps in x; mf = the vertex a third of the way along
+//   the shortest path from en to the brow's inner end;
+//   al = the skin vertex of greatest |x| in the alar region (y between sbal - 2 mm and prn,
+//   z at least z(sbal) - 2 mm, |x| below 2.5 |x(sbal)|).
+// Contours are shortest edge paths (Dijkstra over skin edges weighted by length on the
+// neutral) through landmarks in order, with back-tracking cut where consecutive legs overlap so
+// that no vertex repeats: eyebrows 21..17 and 22..26 (medial to lateral), eye
+// socket loops (en, upper lid, ex, lower lid), outer lips ch_r..ch_l over 49..53 and 59..55,
+// inner lips ch_r, 60, 61..63 or 67..65, 64, ch_l. No nostril rings yet: ICT's nostrils are
+// deep cavities and no simple rule tried so far gave a clean ring around the opening. MPEG-4 points
+// follow docs/dataset-format.md; the 2 lower-teeth points need --with-mouth (9.10: top of the
+// lower teeth nearest the midline; 9.11: top of the third lower tooth on the left). The 4
+// tongue points (group 6) are not written: ICT's tongue is not separable from the gums.
+//
+// Poses (--poses): 36 poses with the names of the synthetic set (face_poses.h), each a
+// weighted sum of ICT expression deltas, expression_k - neutral, added to the identity. The
+// recipes live in assets/ict-poses.json: {"pose name": {"blendshape": weight, ...}, ...}.
+
+#include "dataset/manifest.h"
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace facesketch::dataset {
+
+enum class IctRegion { NarrowFace, Face, HeadNeck };
+
+/// "narrow", "face", "head"; parseIctRegion is its inverse (throws Error naming the text).
+const char* ictRegionName(IctRegion region);
+IctRegion parseIctRegion(const std::string& text);
+
+struct IctOptions {
+    int identities = 250;          ///< thesis 3.1: 182 train + 48 contour + 20 test
+    std::uint64_t seed = 1;
+    IctRegion region = IctRegion::Face;
+    bool eyes = false;             ///< eye sockets and eyeballs
+    bool mouth = false;            ///< mouth socket, gums and tongue, teeth
+    bool poses = false;            ///< write the 36 poses of each posed identity
+    int poseIdentities = -1;       ///< how many identities get poses (-1: all)
+    int vertices = 0;              ///< > 0: simplify to about this many vertices (simplify.h)
+    std::filesystem::path recipes; ///< the pose recipe file (assets/ict-poses.json); needed with poses
+};
+
+/// Pose name -> {ICT expression name -> weight}, in file order.
+using IctPoseRecipes = std::vector<std::pair<std::string, std::map<std::string, double>>>;
+
+/// Reads a recipe file; throws Error naming the file and field for bad JSON, an empty or
+/// duplicate pose name, or a weight that is not a finite number.
+IctPoseRecipes readIctPoseRecipes(const std::filesystem::path& path);
+
+/// The ICT model cut to a region, in mm, with the dataset labels of that region.
+struct IctModel {
+    Manifest labels;                ///< vertexCount, topology, components, landmarks, mpeg4, contours, excluded
+    Vertices neutral;               ///< #V by 3, mm
+    Eigen::MatrixXd identityModes;  ///< 3#V by #modes, column i = flatten(identity_i - neutral), mm
+    std::map<std::string, Eigen::RowVectorXd> expressions; ///< name -> flatten(expression - neutral), 1 by 3#V, mm
+};
+
+/// Reads the model at `path` (see above) and the expressions named in `expressions`.
+/// Throws Error naming the file (and line, for malformed `v` lines) on bad input.
+IctModel loadIctModel(const std::filesystem::path& path, const IctOptions& options,
+                      const std::vector<std::string>& expressions = {});
+
+/// The #modes coefficients of identity `index`: independent N(0, 1) draws (see above).
+Eigen::VectorXd ictCoefficients(std::uint64_t seed, int index, int modes);
+
+/// neutral + identityModes * coefficients, #V by 3, mm.
+Vertices ictIdentity(const IctModel& model, const Eigen::VectorXd& coefficients);
+
+/// identity + sum_k weight_k * expressions[k]; throws Error if an expression was not loaded.
+Vertices ictPose(const IctModel& model, const Vertices& identity, const std::map<std::string, double>& recipe);
+
+/// Writes the dataset folder atomically (dataset.h writeDataset): samples "face_0000"... in
+/// "faces/", roles as synth.h synthRoles (182 : 48 : 20, train first), poses in
+/// "poses/<sample>/<pose>.ply". Deterministic: equal options give byte-identical folders.
+/// Returns the manifest written.
+Manifest writeIctDataset(const std::filesystem::path& path, const std::filesystem::path& output,
+                         const IctOptions& options);
+
+} // namespace facesketch::dataset

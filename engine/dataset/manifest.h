@@ -1,0 +1,86 @@
+#pragma once
+// The manifest of a standardised face dataset (thesis Ch. 3, 3.1): many meshes sharing one
+// vertex topology, plus everything the later chapters need to know about that topology:
+// named components, craniofacial landmarks (thesis Table 3.1), the 46 MPEG-4 feature points
+// used for posing (thesis 5.2), the manually labelled contours (thesis 4.3.3), vertices never
+// used as contour candidates, and the list of samples and poses. The file format is
+// documented in docs/dataset-format.md.
+//
+// All vertex indices are 0-based into the shared vertex list of vertexCount vertices.
+// Readers validate every field; a bad field throws facesketch::Error whose message starts
+// with the file and names the field, e.g.
+//   "data/manifest.json: landmarks.prn: vertex 9000 outside [0, 6000)".
+
+#include "core/mesh.h"
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace facesketch::dataset {
+
+/// What a sample is for (thesis 3.1: 182 faces fit the model, 48 help map contours).
+enum class Role { Train, Contour, Test };
+
+/// "train", "contour", "test".
+const char* roleName(Role role);
+/// Inverse of roleName; throws Error naming `text` otherwise.
+Role parseRole(const std::string& text);
+
+/// A named, half-open range [begin, end) of vertex indices, e.g. "skin" or "eye_left".
+struct Component {
+    std::string name;
+    int begin = 0;
+    int end = 0;
+
+    int size() const { return end - begin; }
+    bool contains(int vertex) const { return vertex >= begin && vertex < end; }
+};
+
+/// One identity in its neutral pose. `file` is relative to the dataset folder.
+struct Sample {
+    std::string name;
+    std::filesystem::path file;
+    Role role = Role::Train;
+};
+
+/// One pose (expression or viseme) of the sample called `identity`.
+struct Pose {
+    std::string identity;
+    std::string name;
+    std::filesystem::path file;
+};
+
+struct Manifest {
+    std::string units = "mm";   ///< "mm", "cm" or "m"
+    std::string up = "+y";      ///< one of +x -x +y -y +z -z
+    std::string forward = "+z"; ///< the direction the face looks; not parallel to `up`
+    int vertexCount = 0;        ///< #V of every mesh in the dataset
+    Triangles topology;         ///< #F by 3, shared by every mesh, counter-clockwise from outside
+    std::vector<Component> components;              ///< disjoint vertex ranges, "skin" required
+    std::map<std::string, int> landmarks;           ///< craniofacial name ("prn", "ex_l") -> vertex
+    std::map<std::string, int> mpeg4;               ///< FDP name ("8.3") -> vertex
+    std::map<std::string, std::vector<int>> contours; ///< name -> ordered vertex path (>= 2)
+    std::vector<int> excluded;                      ///< never contour candidates (thesis 4.3.3)
+    std::vector<Sample> samples;
+    std::vector<Pose> poses;
+
+    /// The component called `name`, or nullptr.
+    const Component* component(const std::string& name) const;
+    /// Samples with the given role, in manifest order.
+    std::vector<const Sample*> samplesWithRole(Role role) const;
+};
+
+/// Checks every field (index ranges, duplicate names, component overlap, pose identities,
+/// file names that stay inside the folder) and throws Error "<where>: <field>: <problem>".
+/// Does not touch the file system.
+void validateManifest(const Manifest& manifest, const std::string& where);
+
+/// Reads and validates a manifest.json. Throws Error naming the file and field.
+Manifest readManifest(const std::filesystem::path& path);
+/// Validates, then writes pretty-printed JSON atomically (core/atomic_file.h). Keys are sorted,
+/// so the same manifest always gives the same bytes.
+void writeManifest(const std::filesystem::path& path, const Manifest& manifest);
+
+} // namespace facesketch::dataset

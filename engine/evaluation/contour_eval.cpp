@@ -1,0 +1,252 @@
+#include "evaluation/contour_eval.h"
+
+#include "contours/candidates_gpu.h"
+#include "contours/curvature.h"
+#include "contours/curvature_gpu.h"
+#include "core/error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+namespace facesketch::evaluation {
+
+const char* mappingName(ContourMapping mapping)
+{
+    switch (mapping) {
+    case ContourMapping::KnownVertex: return "known-vertex";
+    case ContourMapping::NearestCandidate: return "nearest-candidate";
+    default: return "2d";
+    }
+}
+
+namespace {
+
+// Nearest candidate in screen space through a uniform grid of `cell`-pixel buckets.
+class ScreenIndex {
+public:
+    ScreenIndex(const std::vector<Candidate>& cloud, int width, int height, int cell = 8)
+        : cloud_(cloud), cell_(cell), columns_(width / cell + 1), rows_(height / cell + 1), buckets_(static_cast<size_t>(columns_) * rows_)
+    {
+        for (size_t i = 0; i < cloud.size(); ++i)
+            buckets_[bucket(cloud[i].screen[0], cloud[i].screen[1])].push_back(static_cast<int>(i));
+    }
+
+    /// Index into the cloud of the candidate nearest (qx, qy), or -1 for an empty cloud.
+    int nearest(double qx, double qy) const
+    {
+        const int cx = column(qx), cy = row(qy);
+        int best = -1;
+        double bestD2 = std::numeric_limits<double>::infinity();
+        for (int ring = 0; ring <= std::max(columns_, rows_); ++ring) {
+            // Everything in this ring or beyond is at least (ring - 1) cells away.
+            if (best >= 0 && static_cast<double>(ring - 1) * cell_ > std::sqrt(bestD2))
+                break;
+            for (int y = cy - ring; y <= cy + ring; ++y)
+                for (int x = cx - ring; x <= cx + ring; ++x) {
+                    if (std::max(std::abs(x - cx), std::abs(y - cy)) != ring || x < 0 || y < 0 || x >= columns_ || y >= rows_)
+                        continue;
+                    for (int i : buckets_[static_cast<size_t>(y) * columns_ + x]) {
+                        const double dx = cloud_[i].screen[0] - qx, dy = cloud_[i].screen[1] - qy;
+                        if (dx * dx + dy * dy < bestD2) {
+                            bestD2 = dx * dx + dy * dy;
+                            best = i;
+                        }
+                    }
+                }
+        }
+        return best;
+    }
+
+private:
+    int column(double x) const { return std::clamp(static_cast<int>(std::floor(x / cell_)), 0, columns_ - 1); }
+    int row(double y) const { return std::clamp(static_cast<int>(std::floor(y / cell_)), 0, rows_ - 1); }
+    size_t bucket(double x, double y) const { return static_cast<size_t>(row(y)) * columns_ + column(x); }
+
+    const std::vector<Candidate>& cloud_;
+    int cell_, columns_, rows_;
+    std::vector<std::vector<int>> buckets_;
+};
+
+Eigen::VectorXd flatten(const Mesh& mesh)
+{
+    Eigen::VectorXd out(mesh.V.size());
+    for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
+        out.segment<3>(3 * v) = mesh.V.row(v).transpose();
+    return out;
+}
+
+std::vector<float> flattenFloats(const std::vector<Mesh>& meshes)
+{
+    std::vector<float> out;
+    for (const Mesh& m : meshes)
+        for (Eigen::Index v = 0; v < m.V.rows(); ++v)
+            for (int k = 0; k < 3; ++k)
+                out.push_back(static_cast<float>(m.V(v, k)));
+    return out;
+}
+
+// Per-vertex distances between two 3#V vectors: (mean, max, all).
+std::pair<double, double> errors(const Eigen::VectorXd& a, const Eigen::VectorXd& b, Eigen::VectorXd* perVertex)
+{
+    const Eigen::Index n = a.size() / 3;
+    Eigen::VectorXd e(n);
+    for (Eigen::Index v = 0; v < n; ++v)
+        e[v] = (a.segment<3>(3 * v) - b.segment<3>(3 * v)).norm();
+    if (perVertex)
+        *perVertex = e;
+    return {e.mean(), e.maxCoeff()};
+}
+
+} // namespace
+
+std::vector<std::uint32_t> skinContourFlags(const dataset::Manifest& manifest)
+{
+    const dataset::Component* skin = manifest.component("skin");
+    if (!skin)
+        fail("skinContourFlags: the manifest has no skin component");
+    std::vector<std::uint32_t> flags(skin->size(), 0);
+    auto mark = [&](int v, std::uint32_t flag) {
+        if (skin->contains(v))
+            flags[v - skin->begin] |= flag;
+    };
+    for (const auto& [name, path] : manifest.contours)
+        for (int v : path)
+            mark(v, VertexLabelled);
+    for (int v : manifest.excluded)
+        mark(v, VertexExcluded);
+    return flags;
+}
+
+std::vector<ContourEvalResult> evaluateContours(gpu::Device& device, const ContourEvalData& data, const ContourEvalOptions& options)
+{
+    if (!data.model)
+        fail("evaluateContours: no model");
+    const stats::FaceModel& model = *data.model;
+    const Eigen::Index nv = model.vertexCount();
+    auto checkMesh = [&](const Mesh& m, const std::string& what) {
+        if (m.V.rows() != nv || m.F.rows() != model.triangles.rows())
+            fail("evaluateContours: ", what, " has ", m.V.rows(), " vertices and ", m.F.rows(), " triangles; the model has ", nv, " and ",
+                 model.triangles.rows());
+    };
+    if (data.candidateFaces.empty() || data.testFaces.empty() || data.testNames.size() != data.testFaces.size())
+        fail("evaluateContours: need candidate faces and named test faces");
+    for (size_t i = 0; i < data.candidateFaces.size(); ++i)
+        checkMesh(data.candidateFaces[i], cat("candidate face ", i));
+    for (size_t i = 0; i < data.testFaces.size(); ++i)
+        checkMesh(data.testFaces[i], data.testNames[i]);
+
+    Mesh mean;
+    mean.F = model.triangles;
+    mean.V.resize(nv, 3);
+    for (Eigen::Index v = 0; v < nv; ++v)
+        mean.V.row(v) = model.meanFace.segment<3>(3 * v).transpose();
+    ContourParams params;
+    params.silhouetteThreshold = defaultSilhouetteThreshold(nv);
+    params.suggestiveThreshold = options.suggestiveThreshold;
+    params.featureSize = meanEdgeLength(mean);
+
+    GpuCurvature curvature(device, model.triangles, nv);
+    curvature.setPositions(flattenFloats(data.candidateFaces));
+    curvature.run();
+    GpuCandidates cloudBuilder(device, curvature, data.flags);
+
+    std::vector<Curvature> testCurvature;
+    for (const Mesh& face : data.testFaces)
+        testCurvature.push_back(estimateCurvature(face));
+
+    std::vector<ContourEvalResult> results;
+    for (const auto& [viewName, angles] : options.views) {
+        const Camera camera = frameMesh(mean, angles, options.imageSize, options.imageSize);
+        const std::vector<Candidate> cloud = cloudBuilder.build(camera, params);
+        const ScreenIndex index(cloud, options.imageSize, options.imageSize);
+        // Rows of the view's rotation: a point's 2D position in the view plane, in mm.
+        Eigen::Matrix<double, 2, 3> P;
+        Eigen::Vector3d depthAxis;
+        for (int c = 0; c < 3; ++c) {
+            P(0, c) = camera.view[c][0];
+            P(1, c) = camera.view[c][1];
+            depthAxis[c] = camera.view[c][2];
+        }
+
+        for (size_t f = 0; f < data.testFaces.size(); ++f) {
+            const Mesh& face = data.testFaces[f];
+            const Eigen::VectorXd truth = flatten(face);
+            const std::vector<Candidate> points = contourCandidates({face}, {testCurvature[f]}, data.flags, camera, params);
+            const auto [meanFaceMean, meanFaceMax] = errors(model.meanFace, truth, nullptr);
+
+            for (ContourMapping mapping : {ContourMapping::KnownVertex, ContourMapping::NearestCandidate, ContourMapping::Projected2D}) {
+                // `own`: candidates of the current reconstruction (empty at first).
+                auto rebuild = [&](const std::vector<Candidate>& own) {
+                    const ScreenIndex ownIndex(own, options.imageSize, options.imageSize);
+                    // Points per observed vertex, averaged.
+                    std::map<Eigen::Index, std::pair<Eigen::Vector3d, int>> observed;
+                    for (const Candidate& p : points) {
+                        Eigen::Index vertex = p.vertex;
+                        Eigen::Vector3d xyz(p.world[0], p.world[1], p.world[2]);
+                        if (mapping != ContourMapping::KnownVertex) {
+                            auto distance2 = [&](const Candidate& c) {
+                                return std::pow(c.screen[0] - p.screen[0], 2) + std::pow(c.screen[1] - p.screen[1], 2);
+                            };
+                            const int fromCloud = index.nearest(p.screen[0], p.screen[1]);
+                            const int fromOwn = ownIndex.nearest(p.screen[0], p.screen[1]);
+                            const Candidate* match = nullptr;
+                            if (fromOwn >= 0 && (fromCloud < 0 || distance2(own[fromOwn]) <= distance2(cloud[fromCloud])))
+                                match = &own[fromOwn];
+                            else if (fromCloud >= 0)
+                                match = &cloud[fromCloud];
+                            else
+                                continue;
+                            vertex = match->vertex;
+                            // The stroke fixes the point in the view plane; its depth is the
+                            // candidate's (a point's own depth would pin a wrong vertex's depth).
+                            const Eigen::Vector3d c(match->world[0], match->world[1], match->world[2]);
+                            xyz = P.transpose() * (P * xyz) + depthAxis * depthAxis.dot(c);
+                        }
+                        // Eigen vectors do not zero themselves: start each sum explicitly.
+                        auto [slot, inserted] = observed.try_emplace(vertex, Eigen::Vector3d::Zero(), 0);
+                        slot->second.first += xyz;
+                        slot->second.second += 1;
+                    }
+                    stats::Observations obs;
+                    for (const auto& [vertex, sum] : observed) {
+                        const Eigen::Vector3d xyz = sum.first / sum.second;
+                        if (mapping == ContourMapping::Projected2D)
+                            obs.addProjectedVertex(vertex, P, P * xyz);
+                        else
+                            obs.addVertex(vertex, xyz);
+                    }
+                    return std::make_pair(stats::reconstruct(model, obs, options.reconstruct), static_cast<int>(observed.size()));
+                };
+                auto [r, observedCount] = rebuild({});
+                for (int k = 0; mapping != ContourMapping::KnownVertex && k < options.refinements; ++k) {
+                    Mesh current;
+                    current.F = model.triangles;
+                    current.V.resize(nv, 3);
+                    for (Eigen::Index v = 0; v < nv; ++v)
+                        current.V.row(v) = r.face.segment<3>(3 * v).transpose();
+                    const std::vector<Candidate> own = contourCandidates({current}, {estimateCurvature(current)}, data.flags, camera, params);
+                    std::tie(r, observedCount) = rebuild(own);
+                }
+                ContourEvalResult result;
+                result.face = data.testNames[f];
+                result.view = viewName;
+                result.mapping = mapping;
+                result.points = static_cast<int>(points.size());
+                result.observedVertices = observedCount;
+                std::tie(result.meanError, result.maxError) = errors(r.face, truth, &result.vertexError);
+                result.meanFaceMean = meanFaceMean;
+                result.meanFaceMax = meanFaceMax;
+                result.reconstruction.F = model.triangles;
+                result.reconstruction.V.resize(nv, 3);
+                for (Eigen::Index v = 0; v < nv; ++v)
+                    result.reconstruction.V.row(v) = r.face.segment<3>(3 * v).transpose();
+                results.push_back(std::move(result));
+            }
+        }
+    }
+    return results;
+}
+
+} // namespace facesketch::evaluation

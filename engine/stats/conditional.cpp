@@ -1,0 +1,213 @@
+#include "stats/conditional.h"
+
+#include "core/error.h"
+#include "stats/check.h"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <numbers>
+
+namespace facesketch::stats {
+
+void Observations::addVertex(Eigen::Index vertex, const Eigen::Vector3d& xyz)
+{
+    if (vertex < 0)
+        fail("Observations::addVertex: vertex ", vertex, " is negative");
+    requireFinite(xyz, "Observations::addVertex: xyz");
+    Block b;
+    b.first = 3 * vertex;
+    b.width = 3;
+    b.rows = 3;
+    b.P = Eigen::Matrix3d::Identity();
+    b.y = xyz;
+    blocks_.push_back(b);
+    size_ += 3;
+}
+
+void Observations::addProjectedVertex(Eigen::Index vertex, const Eigen::Matrix<double, 2, 3>& P,
+                                      const Eigen::Vector2d& image)
+{
+    if (vertex < 0)
+        fail("Observations::addProjectedVertex: vertex ", vertex, " is negative");
+    requireFinite(P, "Observations::addProjectedVertex: P");
+    requireFinite(image, "Observations::addProjectedVertex: image");
+    const double error = (P * P.transpose() - Eigen::Matrix2d::Identity()).cwiseAbs().maxCoeff();
+    if (error > 1e-9)
+        fail("Observations::addProjectedVertex: the rows of P for vertex ", vertex,
+             " are not orthonormal (|P P^T - I| = ", error, ")");
+    Block b;
+    b.first = 3 * vertex;
+    b.width = 3;
+    b.rows = 2;
+    b.P.topRows<2>() = P;
+    b.y.head<2>() = image;
+    blocks_.push_back(b);
+    size_ += 2;
+}
+
+void Observations::addCoordinate(Eigen::Index index, double value)
+{
+    if (index < 0)
+        fail("Observations::addCoordinate: index ", index, " is negative");
+    if (!std::isfinite(value))
+        fail("Observations::addCoordinate: value ", value, " at index ", index, " is not finite");
+    Block b;
+    b.first = index;
+    b.width = 1;
+    b.rows = 1;
+    b.P(0, 0) = 1.0;
+    b.y(0) = value;
+    blocks_.push_back(b);
+    size_ += 1;
+}
+
+Observations Observations::restrict(const std::vector<int>& local) const
+{
+    Observations out;
+    for (const Block& b : blocks_) {
+        const Eigen::Index vertex = b.first / 3;
+        if (vertex >= static_cast<Eigen::Index>(local.size()) || local[static_cast<size_t>(vertex)] < 0)
+            continue;
+        Block moved = b;
+        moved.first = 3 * static_cast<Eigen::Index>(local[static_cast<size_t>(vertex)]) + b.first % 3;
+        out.blocks_.push_back(moved);
+        out.size_ += b.rows;
+    }
+    return out;
+}
+
+void Observations::validate(Eigen::Index d) const
+{
+    std::vector<bool> seen(static_cast<size_t>(d), false);
+    for (const Block& b : blocks_) {
+        if (b.first + b.width > d)
+            fail("Observations: coordinates ", b.first, "..", b.first + b.width - 1,
+                 " lie outside a vector of dimension ", d);
+        for (Eigen::Index i = b.first; i < b.first + b.width; ++i) {
+            if (seen[static_cast<size_t>(i)])
+                fail("Observations: coordinate ", i, " (vertex ", i / 3, ") is measured twice");
+            seen[static_cast<size_t>(i)] = true;
+        }
+    }
+}
+
+Eigen::MatrixXd Observations::denseP(Eigen::Index d) const
+{
+    Eigen::MatrixXd P = Eigen::MatrixXd::Zero(size_, d);
+    Eigen::Index row = 0;
+    for (const Block& b : blocks_) {
+        P.block(row, b.first, b.rows, b.width) = b.P.topLeftCorner(b.rows, b.width);
+        row += b.rows;
+    }
+    return P;
+}
+
+Eigen::VectorXd Observations::values() const
+{
+    Eigen::VectorXd y(size_);
+    Eigen::Index row = 0;
+    for (const Block& b : blocks_) {
+        y.segment(row, b.rows) = b.y.head(b.rows);
+        row += b.rows;
+    }
+    return y;
+}
+
+Eigen::VectorXd Observations::residual(const Eigen::VectorXd& a) const
+{
+    Eigen::VectorXd r(size_);
+    Eigen::Index row = 0;
+    for (const Block& b : blocks_) {
+        r.segment(row, b.rows) =
+            b.y.head(b.rows) - b.P.topLeftCorner(b.rows, b.width) * a.segment(b.first, b.width);
+        row += b.rows;
+    }
+    return r;
+}
+
+Eigen::MatrixXd Observations::apply(const Eigen::MatrixXd& A) const
+{
+    // Fixed-size cases: a face has thousands of tiny blocks, and dynamic-size products on
+    // 3 by 3 blocks spend most of their time on size checks.
+    Eigen::MatrixXd PA(size_, A.cols());
+    Eigen::Index row = 0;
+    for (const Block& b : blocks_) {
+        if (b.width == 1)
+            PA.row(row) = A.row(b.first);
+        else if (b.rows == 3)
+            PA.middleRows<3>(row) = A.middleRows<3>(b.first);
+        else
+            PA.middleRows<2>(row).noalias() = b.P.topRows<2>() * A.middleRows<3>(b.first);
+        row += b.rows;
+    }
+    return PA;
+}
+
+void Observations::addTransposed(const Eigen::VectorXd& v, Eigen::VectorXd& a) const
+{
+    Eigen::Index row = 0;
+    for (const Block& b : blocks_) {
+        a.segment(b.first, b.width) += b.P.topLeftCorner(b.rows, b.width).transpose() * v.segment(row, b.rows);
+        row += b.rows;
+    }
+}
+
+ComponentPosterior condition(const Ppca& model, const Observations& observations)
+{
+    observations.validate(model.dim());
+    if (!(model.sigma2 > 0.0))
+        fail("condition: the model's sigma^2 = ", model.sigma2, " is not positive");
+    const auto o = static_cast<double>(observations.size());
+    const auto q = static_cast<double>(model.latentDim());
+    const Eigen::MatrixXd WO = observations.apply(model.W);
+    const Eigen::VectorXd r = observations.residual(model.mean);
+    // Only the lower triangle of M = sigma^2 I + W_O^T W_O is formed; the LLT reads no more.
+    Eigen::MatrixXd M = Eigen::MatrixXd::Identity(model.latentDim(), model.latentDim()) * model.sigma2;
+    M.selfadjointView<Eigen::Lower>().rankUpdate(WO.transpose());
+    const Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> llt(M);
+    const Eigen::VectorXd Wr = WO.transpose() * r;
+
+    ComponentPosterior post;
+    post.latent = llt.solve(Wr);
+    // r^T W_O M^{-1} W_O^T r = |L^{-1} W_O^T r|^2 keeps the quadratic form symmetric in rounding.
+    const double explained = llt.matrixL().solve(Wr).squaredNorm();
+    const double quad = std::max(0.0, r.squaredNorm() - explained) / model.sigma2;
+    // |sigma^2 I_o + W_O W_O^T| = sigma^{2(o - q)} |M_O| holds for o < q as well.
+    const double logDet = (o - q) * std::log(model.sigma2) + 2.0 * llt.matrixLLT().diagonal().array().log().sum();
+    post.logLikelihood = -0.5 * (o * std::log(2.0 * std::numbers::pi) + logDet + quad);
+    return post;
+}
+
+Eigen::VectorXd conditionalMean(const Ppca& model, const Observations& observations,
+                                const ComponentPosterior& posterior)
+{
+    Eigen::VectorXd t = model.mean + model.W * posterior.latent;
+    const Eigen::VectorXd unexplained = observations.residual(t);
+    observations.addTransposed(unexplained, t);
+    return t;
+}
+
+Inference infer(const Mppca& model, const Observations& observations)
+{
+    const Eigen::Index K = model.size();
+    if (K == 0 || model.priors.size() != K)
+        fail("infer: the model has ", K, " components and ", model.priors.size(), " priors");
+    Inference result;
+    Eigen::VectorXd scores(K);
+    for (Eigen::Index k = 0; k < K; ++k) {
+        ComponentPosterior post = condition(model.components[static_cast<size_t>(k)], observations);
+        post.logPrior = std::log(model.priors(k));
+        scores(k) = post.score();
+        result.components.push_back(post);
+    }
+    Eigen::Index winner = 0;
+    const double top = scores.maxCoeff(&winner);
+    result.winner = static_cast<int>(winner);
+    result.posterior = (scores.array() - top).exp();
+    result.posterior /= result.posterior.sum();
+    result.reconstruction = conditionalMean(model.components[static_cast<size_t>(winner)], observations,
+                                            result.components[static_cast<size_t>(winner)]);
+    return result;
+}
+
+} // namespace facesketch::stats

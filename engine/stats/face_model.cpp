@@ -1,0 +1,181 @@
+#include "stats/face_model.h"
+
+#include "core/error.h"
+#include "stats/check.h"
+
+#include <algorithm>
+#include <iomanip>
+#include <sstream>
+
+namespace facesketch::stats {
+
+namespace {
+
+// The vertex-to-segment-position map of one segment: local[v] = i if the segment's i-th
+// vertex is v, -1 otherwise.
+std::vector<int> localIndex(const Segmentation& seg, int s, Eigen::Index vertices)
+{
+    std::vector<int> local(static_cast<size_t>(vertices), -1);
+    const auto& members = seg.vertices[static_cast<size_t>(s)];
+    for (size_t i = 0; i < members.size(); ++i)
+        local[static_cast<size_t>(members[i])] = static_cast<int>(i);
+    return local;
+}
+
+} // namespace
+
+FaceModel trainFaceModel(const Eigen::MatrixXd& faces, const Triangles& triangles, int noseTip,
+                         const FaceModelOptions& options, const TrainProgress& progress)
+{
+    requireFinite(faces, "trainFaceModel: faces");
+    const Eigen::Index n = faces.rows();
+    if (n < 4)
+        fail("trainFaceModel: ", n, " faces, need at least 4");
+    if (faces.cols() % 3 != 0 || faces.cols() == 0)
+        fail("trainFaceModel: faces have ", faces.cols(), " columns, expected 3 per vertex");
+    if (options.folds < 2 || options.folds > n)
+        fail("trainFaceModel: folds = ", options.folds, " outside [2, ", n, "]");
+    auto report = [&](const std::string& what, double fraction) {
+        if (progress)
+            progress(what, fraction);
+    };
+
+    FaceModel model;
+    model.triangles = triangles;
+    model.meanFace = faces.colwise().mean().transpose();
+    Mesh mean;
+    mean.V.resize(faces.cols() / 3, 3);
+    for (Eigen::Index v = 0; v < mean.V.rows(); ++v)
+        mean.V.row(v) = model.meanFace.segment<3>(3 * v).transpose();
+    mean.F = triangles;
+    report("segmenting", 0.0);
+    model.segmentation = segmentFace(mean, noseTip, options.segmentation);
+
+    // The smallest training set cross-validation sees; each component needs more samples than
+    // its latent dimension plus one, or its noise variance collapses.
+    const Eigen::Index foldTrain = n - (n + options.folds - 1) / options.folds;
+    const int segments = model.segmentation.size();
+    for (int s = 0; s < segments; ++s) {
+        const std::vector<Eigen::Index> coords = segmentCoordinates(model.segmentation, s);
+        const Eigen::MatrixXd Xs = faces(Eigen::all, coords);
+        const auto d = static_cast<Eigen::Index>(coords.size());
+        MppcaOptions o = options.mppca;
+        o.latentDim = static_cast<int>(std::clamp<Eigen::Index>(options.latentDim, 1, std::min(d - 1, foldTrain - 2)));
+        std::vector<int> candidates;
+        for (int K : options.components)
+            if (K >= 1 && foldTrain / K > o.latentDim + 1)
+                candidates.push_back(K);
+        if (candidates.empty())
+            candidates.push_back(1);
+        o.components = candidates.size() == 1 ? candidates.front()
+                                              : chooseComponents(Xs, candidates, o, options.folds).best;
+        const MppcaFit fit = fitMppca(Xs, o);
+        SegmentModel sm;
+        sm.mixture = fit.model;
+        sm.logLikelihood = fit.logLikelihood.back() / static_cast<double>(n);
+        sm.cleanUp = fitPpca(Xs, static_cast<int>(std::clamp<Eigen::Index>(options.cleanUpDim, 1, std::min(d - 1, n - 1))));
+        model.segments.push_back(std::move(sm));
+        report("segment " + std::to_string(s + 1) + " of " + std::to_string(segments),
+               (s + 1.0) / (segments + 1.0));
+    }
+
+    // Correlation (4.2.5): one row of concatenated clean-up latents per training face.
+    Eigen::Index total = 0;
+    for (const SegmentModel& sm : model.segments)
+        total += sm.cleanUp.latentDim();
+    Eigen::MatrixXd L(n, total);
+    Eigen::Index offset = 0;
+    for (int s = 0; s < segments; ++s) {
+        const Ppca& p = model.segments[static_cast<size_t>(s)].cleanUp;
+        L.middleCols(offset, p.latentDim()) = latent(p, faces(Eigen::all, segmentCoordinates(model.segmentation, s)));
+        offset += p.latentDim();
+    }
+    if (total >= 2) {
+        MppcaOptions o = options.mppca;
+        o.latentDim = static_cast<int>(std::clamp<Eigen::Index>(options.correlationLatentDim, 1, std::min(total - 1, n - 2)));
+        o.components = static_cast<int>(std::clamp<Eigen::Index>(options.correlationComponents, 1, n / (o.latentDim + 2)));
+        model.correlation = fitMppca(L, o).model;
+    }
+    report("done", 1.0);
+    return model;
+}
+
+std::string describe(const FaceModel& model)
+{
+    std::ostringstream out;
+    out << std::setw(8) << "segment" << std::setw(10) << "vertices" << std::setw(12) << "components" << std::setw(8)
+        << "latent" << std::setw(10) << "clean-up" << std::setw(22) << "log-likelihood/face" << "\n";
+    for (size_t s = 0; s < model.segments.size(); ++s) {
+        const SegmentModel& sm = model.segments[s];
+        out << std::setw(8) << s + 1 << std::setw(10) << model.segmentation.vertices[s].size() << std::setw(12)
+            << sm.mixture.size() << std::setw(8) << (sm.mixture.size() > 0 ? sm.mixture.components.front().latentDim() : 0)
+            << std::setw(10) << sm.cleanUp.latentDim() << std::setw(22) << std::fixed << std::setprecision(1)
+            << sm.logLikelihood << "\n";
+    }
+    out << "correlation: " << model.correlation.size() << " components over " << model.correlation.dim() << " latents\n";
+    return out.str();
+}
+
+Reconstruction reconstruct(const FaceModel& model, const Observations& observations, const ReconstructOptions& options)
+{
+    const Eigen::Index vertices = model.vertexCount();
+    observations.validate(3 * vertices);
+    const Segmentation& seg = model.segmentation;
+    const int segments = seg.size();
+
+    // Step 1: infer every measured segment from its own measurements.
+    Reconstruction result;
+    result.winners.assign(static_cast<size_t>(segments), -1);
+    std::vector<Eigen::VectorXd> parts(static_cast<size_t>(segments));
+    bool anyMeasured = false, anyUnmeasured = false;
+    for (int s = 0; s < segments; ++s) {
+        const Observations local = observations.restrict(localIndex(seg, s, vertices));
+        const SegmentModel& sm = model.segments[static_cast<size_t>(s)];
+        if (local.empty()) {
+            anyUnmeasured = true;
+            continue;
+        }
+        anyMeasured = true;
+        const Inference inference = infer(sm.mixture, local);
+        result.winners[static_cast<size_t>(s)] = inference.winner;
+        parts[static_cast<size_t>(s)] = options.cleanUp
+                                            ? Eigen::VectorXd(cleanUp(sm.cleanUp, inference.reconstruction.transpose()).transpose())
+                                            : inference.reconstruction;
+    }
+
+    // Steps 2-4 of thesis 4.2.5: the measured segments' latents are the known part of a
+    // latent vector; the correlation mixture fills in the rest, rebuilt by eq. 4.20.
+    Eigen::VectorXd latents;
+    if (options.correlate && anyMeasured && anyUnmeasured && model.correlation.size() > 0) {
+        Observations known;
+        Eigen::Index offset = 0;
+        for (int s = 0; s < segments; ++s) {
+            const Ppca& p = model.segments[static_cast<size_t>(s)].cleanUp;
+            if (result.winners[static_cast<size_t>(s)] >= 0) {
+                const Eigen::VectorXd z = latent(p, parts[static_cast<size_t>(s)].transpose()).transpose();
+                for (Eigen::Index j = 0; j < z.size(); ++j)
+                    known.addCoordinate(offset + j, z(j));
+            }
+            offset += p.latentDim();
+        }
+        latents = infer(model.correlation, known).reconstruction;
+    }
+    Eigen::Index offset = 0;
+    for (int s = 0; s < segments; ++s) {
+        const Ppca& p = model.segments[static_cast<size_t>(s)].cleanUp;
+        if (result.winners[static_cast<size_t>(s)] < 0)
+            parts[static_cast<size_t>(s)] =
+                latents.size() > 0 ? Eigen::VectorXd(fromLatent(p, latents.segment(offset, p.latentDim()).transpose()).transpose())
+                                   : Eigen::VectorXd(model.meanFace(segmentCoordinates(seg, s)));
+        offset += p.latentDim();
+    }
+    result.face = blendSegments(seg, parts);
+    return result;
+}
+
+Mesh reconstructHead(const FaceModel& model, const Observations& observations, const ReconstructOptions& options)
+{
+    return assembleHead(model.head, model.meanFace, reconstruct(model, observations, options).face);
+}
+
+} // namespace facesketch::stats

@@ -1,0 +1,120 @@
+#pragma once
+// The generative face model (thesis 4.2): a segmented face, a mixture of PPCA per segment,
+// a dual PPCA per segment for the clean-up, and a mixture over the concatenated segment
+// latents that correlates the segments. One call turns a few measured vertices into a whole
+// face.
+//
+// This work is based on:
+//   Gunnarsson, "Sketching 3D Faces", 2010: 4.2.2 (segments), 4.2.3 (a mixture per segment,
+//   its number of components chosen by likelihood), 4.2.4 (clean-up by projection onto the
+//   segment's dual PPCA), 4.2.5 (correlation: a mixture on the concatenated latents, and its
+//   four online steps), 4.2.1.6 (conditional inference).
+//
+// Reconstruction, for measurements y of some vertices (stats/conditional.h):
+//   1. each segment holding a measured vertex is inferred from its own measurements under
+//      its mixture (the winning component's conditional mean), then cleaned up if asked;
+//   2. with correlation on, the latents of those segments under their clean-up PPCA are the
+//      known part of a latent vector, and the correlation mixture infers the rest; the other
+//      segments are rebuilt from their inferred latents by thesis eq. 4.20. With correlation
+//      off, an unmeasured segment keeps the mean face;
+//   3. the segments are blended with the segmentation's weights (no seams).
+// The thesis stored full covariances (338 MB at 863 vertices); this model stores W, mu,
+// sigma^2 and priors only.
+
+#include "core/mesh.h"
+#include "stats/conditional.h"
+#include "stats/mppca.h"
+#include "stats/ppca.h"
+#include "stats/rigid.h"
+#include "stats/segmentation.h"
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace facesketch::stats {
+
+struct FaceModelOptions {
+    SegmentationOptions segmentation;
+    /// Candidate numbers of components per segment, chosen by held-out likelihood with
+    /// `folds`-fold cross-validation (stats/mppca.h, chooseComponents).
+    std::vector<int> components = {1, 2, 3, 4};
+    int folds = 5;
+    /// Latent dimension q of every segment mixture component, clamped to the segment's
+    /// dimension and to the smallest cross-validation training set; candidates K that would
+    /// leave a component fewer than q + 2 faces of that set are skipped.
+    int latentDim = 8;
+    /// Latent dimension of each segment's clean-up PPCA (clamped to n - 1).
+    int cleanUpDim = 20;
+    /// Components and latent dimension of the correlation mixture on the concatenated latents.
+    int correlationComponents = 1;
+    int correlationLatentDim = 10;
+    /// EM settings shared by all mixtures (components and latentDim are overridden).
+    MppcaOptions mppca;
+};
+
+/// One segment's models, over the coordinates segmentCoordinates(segmentation, s).
+struct SegmentModel {
+    Mppca mixture;
+    Ppca cleanUp;
+    /// Mean training log-likelihood per face under `mixture`, nats.
+    double logLikelihood = 0.0;
+};
+
+struct FaceModel {
+    /// Triangles of the shared topology (#F by 3) and the mean face, 3#V values.
+    Triangles triangles;
+    Eigen::VectorXd meanFace;
+    Segmentation segmentation;
+    std::vector<SegmentModel> segments;
+    /// Mixture over the concatenation of every segment's clean-up latent vector.
+    Mppca correlation;
+    /// The rest of the head (eyeballs, teeth, tongue) and its topology; empty (vertexCount 0)
+    /// for a skin-only model. Filled by model/head_model.h trainHeadModel.
+    HeadLayout head;
+
+    Eigen::Index vertexCount() const { return meanFace.size() / 3; }
+};
+
+/// Progress of training: called with a short message and the fraction done in [0, 1].
+using TrainProgress = std::function<void(const std::string& what, double fraction)>;
+
+/// Trains the model.
+/// @param[in] faces     n by 3#V training faces, one per row, laid out (x0, y0, z0, x1, ...)
+///                      in millimetres, all on the topology of `triangles`
+/// @param[in] triangles #F by 3 triangles of the shared topology
+/// @param[in] noseTip   index of the nose-tip vertex
+/// Throws Error naming the row and column of a NaN in faces, or for fewer than 4 faces.
+FaceModel trainFaceModel(const Eigen::MatrixXd& faces, const Triangles& triangles, int noseTip,
+                         const FaceModelOptions& options = {}, const TrainProgress& progress = {});
+
+struct ReconstructOptions {
+    /// Project every inferred segment onto its clean-up PPCA (thesis 4.2.4).
+    bool cleanUp = true;
+    /// Infer unmeasured segments from the measured ones (thesis 4.2.5).
+    bool correlate = true;
+};
+
+struct Reconstruction {
+    /// The whole face, 3#V values.
+    Eigen::VectorXd face;
+    /// Per segment, the winning mixture component, or -1 if no vertex of it was measured.
+    std::vector<int> winners;
+};
+
+/// A table of the trained model, one line per segment: vertices, mixture components, latent
+/// dimension, clean-up dimension and mean training log-likelihood per face (nats).
+std::string describe(const FaceModel& model);
+
+/// The most probable face given the measurements (vertex indices are those of the model).
+Reconstruction reconstruct(const FaceModel& model, const Observations& observations,
+                           const ReconstructOptions& options = {});
+
+/// The whole head for the measurements: reconstruct(), then the rigid parts moved with the
+/// skin around them (stats/rigid.h assembleHead). Returns #head vertices by 3 and the head's
+/// triangles. Throws Error for a skin-only model.
+Mesh reconstructHead(const FaceModel& model, const Observations& observations,
+                     const ReconstructOptions& options = {});
+
+} // namespace facesketch::stats

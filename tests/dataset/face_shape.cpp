@@ -1,0 +1,156 @@
+// Geometry of the synthetic faces: proportions against Farkas' adult norms, landmarks on their
+// features, and meshes free of degenerate, flipped and intersecting triangles.
+#include "core/error.h"
+#include "dataset/face_model.h"
+#include "dataset/mesh_quality.h"
+#include "face_checks.h"
+#include "test_common.h"
+
+#include <cmath>
+#include <iostream>
+
+using namespace facesketch;
+using namespace facesketch::dataset;
+
+namespace {
+
+double distance(const Vertices& V, int a, int b)
+{
+    return (V.row(a) - V.row(b)).norm();
+}
+
+Mesh faceMesh(const FaceTopology& t, const FaceParams& p, const FaceActions& a = {})
+{
+    return {synthesizeFace(t, p, a), t.labels.topology};
+}
+
+} // namespace
+
+using facesketch::dataset::checks::requireClean;
+
+TEST_CASE("face_shape: population matches Farkas adult norms (means within 5%, SDs within 2x)")
+{
+    const FaceTopology t = buildFaceTopology(Resolution::Low);
+    const auto& norms = farkasNorms();
+    // Per norm and sex: sum and sum of squares of the measured distance.
+    std::vector<double> sum[2], sum2[2];
+    int count[2] = {0, 0};
+    for (int s = 0; s < 2; ++s) {
+        sum[s].assign(norms.size(), 0);
+        sum2[s].assign(norms.size(), 0);
+    }
+    for (int i = 0; i < 250; ++i) {
+        const FaceParams p = sampleFaceParams(1, i);
+        const Vertices V = synthesizeFace(t, p);
+        const int s = p.female ? 1 : 0;
+        ++count[s];
+        for (size_t k = 0; k < norms.size(); ++k) {
+            const double d = distance(V, t.labels.landmarks.at(norms[k].from), t.labels.landmarks.at(norms[k].to));
+            sum[s][k] += d;
+            sum2[s][k] += d * d;
+        }
+    }
+    for (int s = 0; s < 2; ++s) {
+        REQUIRE(count[s] > 80);
+        for (size_t k = 0; k < norms.size(); ++k) {
+            const Norm& n = norms[k];
+            const double mean = sum[s][k] / count[s];
+            const double sd = std::sqrt(std::max(0.0, sum2[s][k] / count[s] - mean * mean));
+            const double normMean = s ? n.meanFemale : n.meanMale, normSd = s ? n.sdFemale : n.sdMale;
+            std::cout << "face_shape: " << n.name << (s ? " women" : " men") << ": mean " << mean << " (norm " << normMean
+                      << "), sd " << sd << " (norm " << normSd << ")\n";
+            INFO(n.name << (s ? " women" : " men") << ": mean " << mean << " vs " << normMean << ", sd " << sd << " vs " << normSd);
+            REQUIRE(std::abs(mean - normMean) <= 0.05 * normMean);
+            REQUIRE(sd >= normSd / 2);
+            REQUIRE(sd <= normSd * 2);
+        }
+    }
+}
+
+TEST_CASE("face_shape: landmarks lie on the features they name")
+{
+    const FaceTopology t = buildFaceTopology(Resolution::High);
+    const Manifest& m = t.labels;
+    const Component& skin = *m.component("skin");
+    for (int i = 0; i < 12; ++i) {
+        const Vertices V = synthesizeFace(t, sampleFaceParams(7, i));
+        INFO("face " << i);
+        // prn: the most forward skin vertex is within 3 mm of it.
+        Eigen::Index front = 0;
+        V.middleRows(skin.begin, skin.size()).col(2).maxCoeff(&front);
+        REQUIRE(distance(V, static_cast<int>(front) + skin.begin, m.landmarks.at("prn")) <= 3.0);
+        // ch: the ends of the mouth slit, i.e. where the upper and lower inner lip lines meet.
+        REQUIRE(m.contours.at("lip_upper_inner").front() == m.landmarks.at("ch_r"));
+        REQUIRE(m.contours.at("lip_upper_inner").back() == m.landmarks.at("ch_l"));
+        REQUIRE(m.contours.at("lip_lower_inner").front() == m.landmarks.at("ch_r"));
+        // ...and they are the lateral extremes of every lip contour.
+        for (const char* lip : {"lip_upper_inner", "lip_lower_inner", "lip_upper_outer", "lip_lower_outer"})
+            for (int v : m.contours.at(lip)) {
+                REQUIRE(V(v, 0) <= V(m.landmarks.at("ch_l"), 0) + 1e-9);
+                REQUIRE(V(v, 0) >= V(m.landmarks.at("ch_r"), 0) - 1e-9);
+            }
+        // en/ex: the ends of the eye opening; _l is on +x.
+        REQUIRE(V(m.landmarks.at("ex_l"), 0) > V(m.landmarks.at("en_l"), 0));
+        REQUIRE(V(m.landmarks.at("en_l"), 0) > 0);
+        REQUIRE(V(m.landmarks.at("ex_r"), 0) < V(m.landmarks.at("en_r"), 0));
+        // ps above pi (upper lid over the lower), the fissure open by 7..14 mm.
+        const double fissure = V(m.landmarks.at("ps_l"), 1) - V(m.landmarks.at("pi_l"), 1);
+        REQUIRE(fissure > 7);
+        REQUIRE(fissure < 14);
+        // The vertical order of the midline landmarks.
+        const char* down[] = {"g", "n", "prn", "sn", "ls", "sto", "li", "pg", "gn"};
+        for (int k = 0; k + 1 < 9; ++k) {
+            if (std::string(down[k]) == "n")
+                continue; // prn is below n, checked next
+            INFO(down[k] << " above " << down[k + 1]);
+            REQUIRE(V(m.landmarks.at(down[k]), 1) > V(m.landmarks.at(down[k + 1]), 1));
+        }
+        // sn behind prn; pg the most forward point of the chin below li.
+        REQUIRE(V(m.landmarks.at("prn"), 2) > V(m.landmarks.at("sn"), 2) + 10);
+        // al: the widest point of the nose near its base.
+        REQUIRE(std::abs(V(m.landmarks.at("al_l"), 0) - V(m.landmarks.at("al_r"), 0)) > 25);
+        // Nostril rims surround a pit: their mean is within 6 mm of the pit's deepest vertex.
+        for (int v : m.contours.at("nostril_l")) {
+            REQUIRE(V(v, 0) > 0);
+            REQUIRE(std::abs(V(v, 1) - V(m.landmarks.at("sn"), 1)) < 12);
+        }
+    }
+}
+
+TEST_CASE("face_shape: 100 low-resolution identities have no degenerate, flipped, folded or intersecting triangles")
+{
+    const FaceTopology t = buildFaceTopology(Resolution::Low);
+    const Vertices teeth = synthesizeFace(t, FaceParams{});
+    for (int i = 0; i < 100; ++i)
+        requireClean(t, faceMesh(t, sampleFaceParams(3, i)), teeth, cat("low face ", i));
+}
+
+TEST_CASE("face_shape: 12 high-resolution identities have no degenerate, flipped, folded or intersecting triangles")
+{
+    const FaceTopology t = buildFaceTopology(Resolution::High);
+    const Vertices teeth = synthesizeFace(t, FaceParams{});
+    for (int i = 0; i < 12; ++i)
+        requireClean(t, faceMesh(t, sampleFaceParams(3, i)), teeth, cat("high face ", i));
+}
+
+TEST_CASE("face_shape: sampled faces are distinct")
+{
+    const FaceTopology t = buildFaceTopology(Resolution::Low);
+    std::vector<Vertices> faces;
+    for (int i = 0; i < 250; ++i)
+        faces.push_back(synthesizeFace(t, sampleFaceParams(1, i)));
+    double smallest = 1e9;
+    int a = -1, b = -1;
+    for (size_t i = 0; i < faces.size(); ++i)
+        for (size_t j = i + 1; j < faces.size(); ++j) {
+            const double rms = std::sqrt((faces[i] - faces[j]).rowwise().squaredNorm().mean());
+            if (rms < smallest) {
+                smallest = rms;
+                a = static_cast<int>(i);
+                b = static_cast<int>(j);
+            }
+        }
+    std::cout << "face_shape: smallest pairwise RMS distance of 250 faces: " << smallest << " mm (faces " << a << ", "
+              << b << ")\n";
+    REQUIRE(smallest > 1.0);
+}

@@ -1,0 +1,160 @@
+// Tests of stats/face_model on synthetic faces: a grid "face" with a nose bump, two face types
+// (small and large nose) and smooth global shape modes, in millimetres. Held-out faces are
+// reconstructed from a fraction of their vertices and from one region only.
+#include "stats/face_model.h"
+
+#include "core/error.h"
+#include "stats/random.h"
+#include "synthetic_faces.h"
+
+#include <catch2/catch.hpp>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+using namespace facesketch;
+using namespace facesketch::stats;
+using namespace facesketch::test;
+
+namespace {
+
+FaceModelOptions smallOptions()
+{
+    FaceModelOptions options;
+    options.segmentation.clusters = 6;
+    options.segmentation.minVertices = 30;
+    options.segmentation.maxVertices = 200;
+    options.components = {1, 2};
+    options.folds = 3;
+    options.mppca.restarts = 2;
+    options.latentDim = 6;
+    options.cleanUpDim = 10;
+    options.correlationLatentDim = 10;
+    return options;
+}
+
+// Mean over the listed vertices (all if empty) of |a_v - b_v|, mm.
+double meanVertexError(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const std::vector<int>& only = {})
+{
+    double sum = 0.0;
+    int count = 0;
+    for (Eigen::Index v = 0; v < a.size() / 3; ++v)
+        if (only.empty() || std::find(only.begin(), only.end(), v) != only.end()) {
+            sum += (a.segment<3>(3 * v) - b.segment<3>(3 * v)).norm();
+            ++count;
+        }
+    return sum / count;
+}
+
+struct Trained {
+    Eigen::MatrixXd test;
+    FaceModel model;
+};
+
+const Trained& trained()
+{
+    static const Trained t = [] {
+        Random random(41);
+        Trained out;
+        const Eigen::MatrixXd train = syntheticFaces(random, 100);
+        out.test = syntheticFaces(random, 10);
+        out.model = trainFaceModel(train, gridTriangles(), kNoseTip, smallOptions());
+        return out;
+    }();
+    return t;
+}
+
+} // namespace
+
+TEST_CASE("face_model: 15% of the vertices give under half the mean-face error")
+{
+    const Trained& t = trained();
+    REQUIRE(t.model.segmentation.size() >= 3);
+    // The summary `facesketch train` prints: a header, one line per segment, the correlation.
+    const std::string table = describe(t.model);
+    CHECK(std::count(table.begin(), table.end(), '\n') == t.model.segmentation.size() + 2);
+    Random random(42);
+    double modelError = 0.0, meanError = 0.0;
+    for (Eigen::Index f = 0; f < t.test.rows(); ++f) {
+        const Eigen::VectorXd truth = t.test.row(f).transpose();
+        Observations obs;
+        for (int v = 0; v < kSide * kSide; ++v)
+            if (random.uniform() < 0.15)
+                obs.addVertex(v, truth.segment<3>(3 * v));
+        const Reconstruction r = reconstruct(t.model, obs);
+        REQUIRE(r.winners.size() == static_cast<size_t>(t.model.segmentation.size()));
+        modelError += meanVertexError(r.face, truth) / t.test.rows();
+        meanError += meanVertexError(t.model.meanFace, truth) / t.test.rows();
+    }
+    INFO("mean per-vertex error: model " << modelError << " mm, mean face " << meanError << " mm");
+    CHECK(modelError < 0.5 * meanError);
+}
+
+TEST_CASE("face_model: correlation brings unmeasured segments closer to the truth")
+{
+    const Trained& t = trained();
+    const Segmentation& seg = t.model.segmentation;
+    // Measure the vertices that only the nose tip's segment holds (one feature region);
+    // score the vertices that no measured segment holds.
+    std::vector<int> holders(static_cast<size_t>(kSide * kSide), 0);
+    for (int s = 0; s < seg.size(); ++s)
+        for (int v : seg.vertices[static_cast<size_t>(s)])
+            ++holders[static_cast<size_t>(v)];
+    const int nose = seg.core(kNoseTip);
+    std::vector<int> measured;
+    for (int v = 0; v < kSide * kSide; ++v)
+        if (seg.core(v) == nose && holders[static_cast<size_t>(v)] == 1)
+            measured.push_back(v);
+    REQUIRE(measured.size() >= 10);
+
+    double with = 0.0, without = 0.0, meanError = 0.0;
+    size_t scored = 0;
+    for (Eigen::Index f = 0; f < t.test.rows(); ++f) {
+        const Eigen::VectorXd truth = t.test.row(f).transpose();
+        Observations obs;
+        for (int v : measured)
+            obs.addVertex(v, truth.segment<3>(3 * v));
+        ReconstructOptions on, off;
+        off.correlate = false;
+        const Reconstruction a = reconstruct(t.model, obs, on), b = reconstruct(t.model, obs, off);
+        REQUIRE(a.winners == b.winners);
+        std::vector<int> unmeasured;
+        for (int v = 0; v < kSide * kSide; ++v) {
+            bool held = false;
+            for (int s = 0; s < seg.size(); ++s)
+                if (a.winners[static_cast<size_t>(s)] >= 0)
+                    held = held || std::binary_search(seg.vertices[static_cast<size_t>(s)].begin(),
+                                                      seg.vertices[static_cast<size_t>(s)].end(), v);
+            if (!held)
+                unmeasured.push_back(v);
+        }
+        REQUIRE(unmeasured.size() > 100);
+        scored = unmeasured.size();
+        with += meanVertexError(a.face, truth, unmeasured) / t.test.rows();
+        without += meanVertexError(b.face, truth, unmeasured) / t.test.rows();
+        meanError += meanVertexError(t.model.meanFace, truth, unmeasured) / t.test.rows();
+    }
+    INFO(measured.size() << " vertices measured, " << scored << " scored: correlation on " << with << " mm, off "
+                         << without << " mm, mean face " << meanError << " mm");
+    CHECK(with < 0.75 * without);
+}
+
+TEST_CASE("face_model: measured vertices are kept without clean-up, and bad input is rejected")
+{
+    const Trained& t = trained();
+    const Eigen::VectorXd truth = t.test.row(0).transpose();
+    Observations obs;
+    obs.addVertex(kNoseTip, truth.segment<3>(3 * kNoseTip));
+    ReconstructOptions raw;
+    raw.cleanUp = false;
+    const Reconstruction r = reconstruct(t.model, obs, raw);
+    // The nose tip is in the core of one segment; overlapping segments that hold it see the
+    // same measurement, so the blend returns it exactly.
+    CHECK((r.face.segment<3>(3 * kNoseTip) - truth.segment<3>(3 * kNoseTip)).norm() < 1e-9);
+    Observations outside;
+    outside.addVertex(kSide * kSide, Eigen::Vector3d::Zero());
+    REQUIRE_THROWS_AS(reconstruct(t.model, outside), Error);
+    Eigen::MatrixXd bad = t.test;
+    bad(2, 5) = std::nan("");
+    REQUIRE_THROWS_WITH(trainFaceModel(bad, gridTriangles(), kNoseTip, smallOptions()), Catch::Contains("faces(2, 5)"));
+}

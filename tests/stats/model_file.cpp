@@ -1,0 +1,134 @@
+// Tests of stats/model_file: an exact round trip, and a clear error for each kind of bad file.
+#include "stats/model_file.h"
+
+#include "core/error.h"
+#include "stats/random.h"
+#include "test_common.h"
+
+#include <catch2/catch.hpp>
+#include <fstream>
+#include <iterator>
+
+using namespace facesketch;
+using namespace facesketch::stats;
+
+namespace {
+
+// A model with random contents on a 9 by 9 grid: the file format does not care whether it
+// was trained.
+FaceModel randomModel()
+{
+    Random random(51);
+    const int side = 9;
+    Mesh grid;
+    grid.V.resize(side * side, 3);
+    for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side; ++i)
+            grid.V.row(i + side * j) << i - 4.0, j - 4.0, 0.1 * (i - 4.0) * (i - 4.0);
+    grid.F.resize(2 * (side - 1) * (side - 1), 3);
+    for (int j = 0, f = 0; j + 1 < side; ++j)
+        for (int i = 0; i + 1 < side; ++i, f += 2) {
+            const int a = i + side * j;
+            grid.F.row(f) << a, a + 1, a + side + 1;
+            grid.F.row(f + 1) << a, a + side + 1, a + side;
+        }
+    SegmentationOptions so;
+    so.clusters = 3;
+    so.minVertices = 10;
+
+    FaceModel model;
+    model.triangles = grid.F;
+    model.meanFace = random.normalMatrix(3 * side * side, 1);
+    model.segmentation = segmentFace(grid, 40, so);
+    auto ppca = [&](Eigen::Index d, int q) {
+        Ppca p;
+        p.mean = random.normalMatrix(d, 1);
+        p.W = random.normalMatrix(d, q);
+        p.sigma2 = 0.5 + random.uniform();
+        return p;
+    };
+    Eigen::Index latents = 0;
+    for (int s = 0; s < model.segmentation.size(); ++s) {
+        const auto d = 3 * static_cast<Eigen::Index>(model.segmentation.vertices[static_cast<size_t>(s)].size());
+        SegmentModel sm;
+        sm.mixture.components = {ppca(d, 2), ppca(d, 2)};
+        sm.mixture.priors = Eigen::Vector2d(0.25, 0.75);
+        sm.cleanUp = ppca(d, 3);
+        sm.logLikelihood = -123.5 * (s + 1);
+        latents += 3;
+        model.segments.push_back(sm);
+    }
+    model.correlation.components = {ppca(latents, 2)};
+    model.correlation.priors = Eigen::VectorXd::Ones(1);
+    return model;
+}
+
+std::string readBytes(const std::filesystem::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void writeBytes(const std::filesystem::path& path, const std::string& bytes)
+{
+    std::ofstream out(path, std::ios::binary);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+} // namespace
+
+TEST_CASE("model_file: a saved model loads back bit for bit")
+{
+    test::TempDir dir;
+    const FaceModel model = randomModel();
+    saveFaceModel(model, dir / "face.model");
+    const FaceModel back = loadFaceModel(dir / "face.model");
+    REQUIRE(back.triangles == model.triangles);
+    REQUIRE(back.meanFace == model.meanFace);
+    REQUIRE(back.segmentation.core == model.segmentation.core);
+    REQUIRE(back.segmentation.vertices == model.segmentation.vertices);
+    REQUIRE(back.segments.size() == model.segments.size());
+    for (size_t s = 0; s < model.segments.size(); ++s) {
+        REQUIRE(back.segmentation.weights[s] == model.segmentation.weights[s]);
+        REQUIRE(back.segments[s].mixture.priors == model.segments[s].mixture.priors);
+        for (size_t k = 0; k < 2; ++k) {
+            REQUIRE(back.segments[s].mixture.components[k].W == model.segments[s].mixture.components[k].W);
+            REQUIRE(back.segments[s].mixture.components[k].mean == model.segments[s].mixture.components[k].mean);
+            REQUIRE(back.segments[s].mixture.components[k].sigma2 == model.segments[s].mixture.components[k].sigma2);
+        }
+        REQUIRE(back.segments[s].cleanUp.W == model.segments[s].cleanUp.W);
+        REQUIRE(back.segments[s].logLikelihood == model.segments[s].logLikelihood);
+    }
+    REQUIRE(back.correlation.components.front().W == model.correlation.components.front().W);
+    // The payload is the stored doubles plus a few bytes of sizes per matrix.
+    size_t doubles = model.meanFace.size();
+    for (const SegmentModel& sm : model.segments)
+        doubles += 2 * (sm.mixture.components[0].W.size() + sm.mixture.components[0].mean.size()) +
+                   sm.cleanUp.W.size() + sm.cleanUp.mean.size();
+    CHECK(std::filesystem::file_size(dir / "face.model") < 8 * doubles + 8 * model.triangles.size() + 4096);
+}
+
+TEST_CASE("model_file: wrong, old, truncated and corrupt files give clear errors")
+{
+    test::TempDir dir;
+    saveFaceModel(randomModel(), dir / "good.model");
+    const std::string good = readBytes(dir / "good.model");
+
+    writeBytes(dir / "mesh.ply", "ply\nformat binary_little_endian 1.0\n");
+    REQUIRE_THROWS_WITH(loadFaceModel(dir / "mesh.ply"), Catch::Contains("not a FaceSketch face model"));
+
+    std::string old = good;
+    old[8] = 7; // version 7
+    writeBytes(dir / "old.model", old);
+    REQUIRE_THROWS_WITH(loadFaceModel(dir / "old.model"), Catch::Contains("version 7"));
+
+    writeBytes(dir / "short.model", good.substr(0, good.size() / 2));
+    REQUIRE_THROWS_WITH(loadFaceModel(dir / "short.model"), Catch::Contains("truncated"));
+
+    std::string flipped = good;
+    flipped[good.size() / 2] ^= 0x10;
+    writeBytes(dir / "flipped.model", flipped);
+    REQUIRE_THROWS_WITH(loadFaceModel(dir / "flipped.model"), Catch::Contains("checksum mismatch"));
+
+    REQUIRE_THROWS_WITH(loadFaceModel(dir / "missing.model"), Catch::Contains("missing.model"));
+}

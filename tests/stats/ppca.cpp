@@ -1,0 +1,114 @@
+// Tests of stats/ppca: dual and primal fits agree, the fit is the textbook maximum-likelihood
+// solution, and the Woodbury-based evaluations match dense formulas.
+#include "stats/ppca.h"
+
+#include "core/error.h"
+#include "synthetic.h"
+
+#include <catch2/catch.hpp>
+#include <Eigen/Eigenvalues>
+#include <limits>
+
+using namespace facesketch;
+using namespace facesketch::stats;
+using namespace facesketch::test;
+
+TEST_CASE("ppca: dual PPCA equals PPCA in subspace and sigma^2")
+{
+    Random random(1);
+    for (const auto& [n, d, q] : {std::tuple{30, 80, 4}, std::tuple{60, 20, 3}, std::tuple{12, 200, 10}}) {
+        const Ppca truth = randomPpca(random, d, q, 5.0, 1.0, 0.3);
+        Eigen::VectorXi labels;
+        Mppca one;
+        one.components = {truth};
+        one.priors = Eigen::VectorXd::Ones(1);
+        const Eigen::MatrixXd X = sampleMixture(random, one, n, labels);
+        const Ppca primal = fitPpcaPrimal(X, q);
+        const Ppca dual = fitPpcaDual(X, q);
+        INFO("n = " << n << ", d = " << d << ", q = " << q);
+        CHECK(relativeDifference(dual.sigma2, primal.sigma2) < 1e-9);
+        CHECK(relativeDifference(dual.mean, primal.mean) < 1e-12);
+        // W is unique up to the sign of each column; W W^T is not.
+        CHECK(relativeDifference(dual.W * dual.W.transpose(), primal.W * primal.W.transpose()) < 1e-9);
+        CHECK(largestPrincipalAngle(dual.W, primal.W) < 1e-6);
+    }
+}
+
+TEST_CASE("ppca: the fit is Tipping and Bishop's closed form")
+{
+    Random random(2);
+    const int n = 50, d = 15, q = 4;
+    const Eigen::MatrixXd X = random.normalMatrix(n, d) * random.normalMatrix(d, d);
+    const Ppca model = fitPpca(X, q);
+
+    // Independently: singular values of the centred data give the eigenvalues of S.
+    const Eigen::MatrixXd Xc = X.rowwise() - X.colwise().mean();
+    const Eigen::VectorXd s = Eigen::JacobiSVD<Eigen::MatrixXd>(Xc / std::sqrt(double(n))).singularValues();
+    const Eigen::VectorXd lambda = s.cwiseProduct(s);
+    const double sigma2 = lambda.tail(d - q).sum() / (d - q);
+    CHECK(relativeDifference(model.sigma2, sigma2) < 1e-10);
+    // W^T W = L_q - sigma^2 I, diagonal.
+    Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(q, q);
+    expected.diagonal() = lambda.head(q).array() - sigma2;
+    CHECK(relativeDifference(model.W.transpose() * model.W, expected) < 1e-9);
+
+    // It is a maximum: moving sigma^2 or scaling W only lowers the likelihood.
+    const double best = logLikelihood(model, X).sum();
+    for (double factor : {0.9, 0.99, 1.01, 1.1}) {
+        Ppca moved = model;
+        moved.sigma2 *= factor;
+        CHECK(logLikelihood(moved, X).sum() < best);
+        moved = model;
+        moved.W *= factor;
+        CHECK(logLikelihood(moved, X).sum() < best);
+    }
+}
+
+TEST_CASE("ppca: log-likelihood matches the dense Gaussian density")
+{
+    Random random(3);
+    const Ppca model = randomPpca(random, 30, 5, 2.0, 1.5, 0.2);
+    const Eigen::MatrixXd T = random.normalMatrix(6, 30) * 3.0;
+    const Eigen::VectorXd fast = logLikelihood(model, T);
+    const Eigen::MatrixXd C = denseCovariance(model);
+    for (Eigen::Index i = 0; i < T.rows(); ++i)
+        CHECK(relativeDifference(fast(i), denseLogDensity(T.row(i).transpose(), model.mean, C)) < 1e-9);
+}
+
+TEST_CASE("ppca: latent is the posterior mean and clean-up the projection onto the subspace")
+{
+    Random random(4);
+    const Ppca model = randomPpca(random, 24, 4, 2.0, 1.0, 0.5);
+    const Eigen::MatrixXd T = random.normalMatrix(5, 24) * 2.0;
+    const Eigen::MatrixXd Z = latent(model, T);
+    REQUIRE(Z.rows() == 5);
+    REQUIRE(Z.cols() == 4);
+    // E[x | t] = W^T C^{-1} (t - mu) by Bayes' theorem on the joint Gaussian of x and t.
+    const Eigen::MatrixXd C = denseCovariance(model);
+    const Eigen::MatrixXd E = (T.rowwise() - model.mean.transpose()).transpose();
+    const Eigen::MatrixXd expected = (model.W.transpose() * C.llt().solve(E)).transpose();
+    CHECK(relativeDifference(Z, expected) < 1e-9);
+
+    // Clean-up: mu + W (W^T W)^{-1} W^T (t - mu), an idempotent orthogonal projection.
+    const Eigen::MatrixXd clean = cleanUp(model, T);
+    const Eigen::MatrixXd WtW = model.W.transpose() * model.W;
+    const Eigen::MatrixXd projected =
+        (model.W * WtW.llt().solve(model.W.transpose() * E)).colwise() + model.mean;
+    CHECK(relativeDifference(clean, projected.transpose()) < 1e-9);
+    CHECK(relativeDifference(cleanUp(model, clean), clean) < 1e-9);
+    const Eigen::MatrixXd residual = (T - clean) * model.W;
+    CHECK(residual.cwiseAbs().maxCoeff() < 1e-9 * T.cwiseAbs().maxCoeff() * model.W.cwiseAbs().maxCoeff() * 24);
+}
+
+TEST_CASE("ppca: rejects NaN and a latent dimension out of range")
+{
+    Random random(5);
+    Eigen::MatrixXd X = random.normalMatrix(10, 6);
+    REQUIRE_THROWS_AS(fitPpca(X, 0), Error);
+    REQUIRE_THROWS_AS(fitPpca(X, 6), Error);
+    X(3, 4) = std::numeric_limits<double>::infinity();
+    REQUIRE_THROWS_WITH(fitPpca(X, 2), Catch::Contains("X(3, 4)"));
+    const Ppca model = randomPpca(random, 6, 2, 1.0, 1.0, 1.0);
+    REQUIRE_THROWS_WITH(logLikelihood(model, X), Catch::Contains("(3, 4)"));
+    REQUIRE_THROWS_AS(logLikelihood(model, Eigen::MatrixXd::Zero(2, 5)), Error);
+}
