@@ -56,7 +56,8 @@ void benchContours(const BenchOptions& options, std::ostream& out)
     const std::vector<Mesh> meshes = facePatches(options.meshes, options.vertices);
     const Eigen::Index nv = meshes[0].V.rows();
     const std::string tag = std::to_string(nv) + "v";
-    gpu::Device device = gpu::createDevice();
+    gpu::ScopedDevice deviceOwner;
+    gpu::Device& device = *deviceOwner;
     out << "# device: " << device.name << (device.validation ? " (validation on: timings not representative)" : "") << "\n";
     out << "# batch: " << meshes.size() << " meshes x " << nv << " vertices\n";
 
@@ -102,7 +103,6 @@ void benchContours(const BenchOptions& options, std::ostream& out)
         out << "candidates_count_" << tag << " " << count << " points\n";
         out << "candidates_stroke_box_count_" << tag << " " << strokeCount << " points\n";
     }
-    gpu::destroyDevice(device);
 
     // Single-threaded CPU reference on a subset, scaled to the whole batch (it is linear in meshes).
     const int cpuMeshes = std::min<int>(static_cast<int>(meshes.size()), 10);

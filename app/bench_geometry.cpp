@@ -42,7 +42,8 @@ void benchNormals(const BenchOptions& options, std::ostream& out)
     const Mesh grid = makeGrid(side, side, 150.0, 150.0);
     const std::vector<float> positions = bumpyBatch(grid, options.meshes);
 
-    gpu::Device device = gpu::createDevice();
+    gpu::ScopedDevice deviceOwner;
+    gpu::Device& device = *deviceOwner;
     out << "# device: " << device.name << (device.validation ? " (validation on: timings not representative)" : "") << "\n";
     out << "# batch: " << options.meshes << " meshes x " << grid.V.rows() << " vertices, " << grid.F.rows() << " triangles\n";
     {
@@ -72,13 +73,13 @@ void benchNormals(const BenchOptions& options, std::ostream& out)
         cpuMs.push_back(cpu.milliseconds());
     }
     out << "normals_cpu_1thread_ms " << median(cpuMs) << " ms\n";
-    gpu::destroyDevice(device);
 }
 
 void benchRender(const BenchOptions& options, std::ostream& out)
 {
     const Mesh sphere = makeIcosphere(1.0, 5);
-    gpu::Device device = gpu::createDevice();
+    gpu::ScopedDevice deviceOwner;
+    gpu::Device& device = *deviceOwner;
     out << "# device: " << device.name << "\n# mesh: icosphere, " << sphere.V.rows() << " vertices, 1024x1024, 4x MSAA\n";
     {
         Renderer renderer(device, 1024, 1024, 4);
@@ -93,7 +94,6 @@ void benchRender(const BenchOptions& options, std::ostream& out)
         }
         out << "render_1024_ms " << median(ms) << " ms\n";
     }
-    gpu::destroyDevice(device);
 }
 
 } // namespace facesketch::app

@@ -120,8 +120,9 @@ void writeContourPictures(const ContourPictureOptions& options)
         const Curvature curvature = estimateCurvature(faces.shown);
         const ContourLines lines = contourLines(faces.shown, curvature, camera, params, faces.flags, faces.labelled);
 
-        gpu::Device device = gpu::createDevice();
-        try {
+        gpu::ScopedDevice deviceOwner;
+        gpu::Device& device = *deviceOwner;
+        {
             std::vector<Candidate> cloud;
             {
                 GpuCurvature gpuCurvature(device, faces.shown.F, nv);
@@ -181,11 +182,7 @@ void writeContourPictures(const ContourPictureOptions& options)
             std::cout << "wrote " << prefix << "-face.png, -sketch.png, -cloud.png, -density.png (" << lines.silhouette.size() / 2
                       << " silhouette, " << lines.suggestive.size() / 2 << " suggestive, " << lines.labelled.size() / 2
                       << " labelled segments)\n";
-        } catch (...) {
-            gpu::destroyDevice(device);
-            throw;
         }
-        gpu::destroyDevice(device);
     }
 }
 

@@ -89,8 +89,9 @@ void printTable(const std::vector<evaluation::ContourEvalResult>& results)
 void writeErrorRenders(const EvalContoursCommand& c, const std::vector<evaluation::ContourEvalResult>& results)
 {
     std::filesystem::create_directories(c.output);
-    gpu::Device device = gpu::createDevice();
-    try {
+    gpu::ScopedDevice deviceOwner;
+    gpu::Device& device = *deviceOwner;
+    {
         Renderer renderer(device, 512, 512, 4);
         int written = 0;
         std::string lastFace;
@@ -114,11 +115,7 @@ void writeErrorRenders(const EvalContoursCommand& c, const std::vector<evaluatio
             ++written;
         }
         std::cout << "wrote " << written << " error renders to " << c.output << " (blue 0 mm to red " << c.errorScale << " mm)\n";
-    } catch (...) {
-        gpu::destroyDevice(device);
-        throw;
     }
-    gpu::destroyDevice(device);
 }
 
 void runEvalContours(const EvalContoursCommand& c)
@@ -144,15 +141,8 @@ void runEvalContours(const EvalContoursCommand& c)
     options.imageSize = c.size;
     options.suggestiveThreshold = c.suggestive;
     options.refinements = c.refinements;
-    gpu::Device device = gpu::createDevice();
-    std::vector<evaluation::ContourEvalResult> results;
-    try {
-        results = evaluation::evaluateContours(device, data, options);
-    } catch (...) {
-        gpu::destroyDevice(device);
-        throw;
-    }
-    gpu::destroyDevice(device);
+    gpu::ScopedDevice device;
+    const std::vector<evaluation::ContourEvalResult> results = evaluation::evaluateContours(*device, data, options);
     std::cout << "# " << data.testFaces.size() << " test faces, cloud of " << data.candidateFaces.size() << " faces, " << m.vertexCount()
               << " skin vertices, " << c.refinements << " refinements, " << clock.seconds() << " s\n";
     printTable(results);
@@ -173,15 +163,7 @@ void runEvalContours(const EvalContoursCommand& c)
         const stats::FaceModel subset = stats::trainFaceModel(train.topRows(n), F, prn);
         evaluation::ContourEvalData d = data;
         d.model = &subset;
-        gpu::Device dev = gpu::createDevice();
-        std::vector<evaluation::ContourEvalResult> r;
-        try {
-            r = evaluation::evaluateContours(dev, d, options);
-        } catch (...) {
-            gpu::destroyDevice(dev);
-            throw;
-        }
-        gpu::destroyDevice(dev);
+        const std::vector<evaluation::ContourEvalResult> r = evaluation::evaluateContours(*device, d, options);
         double sums[3] = {0, 0, 0}, meanFace = 0;
         for (const auto& x : r) {
             sums[static_cast<int>(x.mapping)] += x.meanError;

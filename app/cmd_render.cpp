@@ -27,8 +27,9 @@ void addRenderCommand(CLI::App& root)
     cmd->callback([o] {
         const ViewAngles view = parseView(o->view);
         const Mesh mesh = readMesh(o->mesh);
-        gpu::Device device = gpu::createDevice();
-        try {
+        gpu::ScopedDevice deviceOwner;
+        gpu::Device& device = *deviceOwner;
+        {
             Image image;
             {
                 Renderer renderer(device, o->width, o->height, o->samples);
@@ -37,11 +38,7 @@ void addRenderCommand(CLI::App& root)
                                                   o->perspective ? Projection::Perspective : Projection::Orthographic));
             }
             writePng(o->output, image);
-        } catch (...) {
-            gpu::destroyDevice(device);
-            throw;
         }
-        gpu::destroyDevice(device);
         std::cout << "wrote " << o->output << " (" << o->width << "x" << o->height << ", " << mesh.V.rows() << " vertices, "
                   << mesh.F.rows() << " triangles)\n";
     });

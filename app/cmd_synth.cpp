@@ -81,8 +81,9 @@ void writePreview(const std::string& path, const FaceTopology& topology, const s
     grid.width = columns * cell;
     grid.height = rows * 2 * cell;
     grid.pixels.assign(static_cast<size_t>(grid.width) * grid.height * 4, 255);
-    gpu::Device device = gpu::createDevice();
-    try {
+    gpu::ScopedDevice deviceOwner;
+    gpu::Device& device = *deviceOwner;
+    {
         Renderer renderer(device, cell, cell, 4);
         for (int i = 0; i < n; ++i)
             for (int view = 0; view < 2; ++view) {
@@ -114,11 +115,7 @@ void writePreview(const std::string& path, const FaceTopology& topology, const s
                 for (int y = 0; y < cell; ++y)
                     std::copy_n(image.at(0, y), 4 * cell, grid.at(x0, y0 + y));
             }
-    } catch (...) {
-        gpu::destroyDevice(device);
-        throw;
     }
-    gpu::destroyDevice(device);
     writePng(path, grid);
 }
 

@@ -65,6 +65,21 @@ struct Device {
 Device createDevice(const DeviceOptions& options = {});
 void destroyDevice(Device& device);
 
+/// Owns a Device for a scope and destroys it on the way out, exceptions included: for code that
+/// uses one device from start to end (commands, benchmarks, the test fixture).
+class ScopedDevice {
+public:
+    explicit ScopedDevice(const DeviceOptions& options = {}) : device_(createDevice(options)) {}
+    ~ScopedDevice() { destroyDevice(device_); }
+    ScopedDevice(const ScopedDevice&) = delete;
+    ScopedDevice& operator=(const ScopedDevice&) = delete;
+    Device& operator*() { return device_; }
+    Device* operator->() { return &device_; }
+
+private:
+    Device device_;
+};
+
 /// Number of validation messages (warnings and errors) reported since the process started.
 std::uint64_t validationMessageCount();
 

@@ -2,7 +2,6 @@
 // repository: tests read it from $FACESKETCH_ICT_DIR, else ../shared/datasets/ict-facekit
 // beside the source tree, and report themselves SKIPPED (a visible warning) when it is absent.
 #include "core/error.h"
-#include "core/stopwatch.h"
 #include "dataset/dataset.h"
 #include "dataset/face_poses.h"
 #include "dataset/import_ict.h"
@@ -299,24 +298,4 @@ TEST_CASE("import_ict: --vertices keeps every label and contour edge on the coar
     const Vertices va = loadMesh(a, a.manifest.samples[1].file).V, vb = loadMesh(b, b.manifest.samples[1].file).V;
     for (const auto& [name, v] : full.landmarks)
         REQUIRE((va.row(v) - vb.row(coarse.landmarks.at(name))).norm() < 1e-4);
-}
-
-TEST_CASE("import_ict: 250 identities import in under 30 s")
-{
-    REQUIRE_ICT_OR_SKIP();
-#if defined(__SANITIZE_ADDRESS__)
-    const int identities = 25; // sanitizers slow everything several times; time a tenth, check nothing
-#else
-    const int identities = 250;
-#endif
-    test::TempDir dir;
-    IctOptions o;
-    o.identities = identities;
-    Stopwatch clock;
-    writeIctDataset(ictDir(), dir / "ict", o);
-    const double seconds = clock.seconds();
-    std::cout << "import_ict: " << identities << " ICT identities (face region) imported in " << seconds << " s\n";
-#if !defined(__SANITIZE_ADDRESS__)
-    REQUIRE(seconds < 30);
-#endif
 }
