@@ -14,6 +14,7 @@ void addRenderCommand(CLI::App& root);
 void addBenchCommand(CLI::App& root);
 void addDemoCommand(CLI::App& root);
 void addContoursCommand(CLI::App& root);
+void addPreviewCommand(CLI::App& root);
 void addSynthCommand(CLI::App& root);
 void addImportCommand(CLI::App& root);
 void addTrainCommand(CLI::App& root);

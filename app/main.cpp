@@ -14,6 +14,7 @@ int main(int argc, char** argv)
     app::addDemoCommand(root);
     app::addRenderCommand(root);
     app::addContoursCommand(root);
+    app::addPreviewCommand(root);
     app::addBenchCommand(root);
     app::addSynthCommand(root);
     app::addImportCommand(root);
