@@ -8,6 +8,7 @@
 #include "contours/curvature.h"
 #include "contours/curvature_gpu.h"
 #include "core/stopwatch.h"
+#include "geometry/mesh_batch.h"
 #include "geometry/primitives.h"
 
 #include <cmath>
@@ -39,16 +40,6 @@ std::vector<Mesh> facePatches(int meshes, int vertices)
     return out;
 }
 
-std::vector<float> flatten(const std::vector<Mesh>& meshes)
-{
-    std::vector<float> out;
-    for (const Mesh& m : meshes)
-        for (Eigen::Index v = 0; v < m.V.rows(); ++v)
-            for (int k = 0; k < 3; ++k)
-                out.push_back(static_cast<float>(m.V(v, k)));
-    return out;
-}
-
 } // namespace
 
 void benchContours(const BenchOptions& options, std::ostream& out)
@@ -73,7 +64,7 @@ void benchContours(const BenchOptions& options, std::ostream& out)
     {
         GpuCurvature curvature(device, meshes[0].F, nv);
         Stopwatch upload;
-        const std::vector<float> positions = flatten(meshes);
+        const std::vector<float> positions = meshMajorPositions(meshes);
         curvature.setPositions(positions);
         out << "curvature_upload_" << tag << "_ms " << upload.milliseconds() << " ms\n";
         curvature.run(); // warm-up

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "dataset/dataset.h"
+#include "geometry/mesh_batch.h"
 #include "io/mesh_io.h"
 #include "render/colormap.h"
 #include "render/renderer.h"
@@ -64,17 +65,6 @@ Faces loadFaces(const std::filesystem::path& input, int maxFaces)
     return f;
 }
 
-std::vector<float> flatten(const std::vector<Mesh>& meshes)
-{
-    std::vector<float> out;
-    out.reserve(meshes.size() * meshes[0].V.size());
-    for (const Mesh& m : meshes)
-        for (Eigen::Index v = 0; v < m.V.rows(); ++v)
-            for (int k = 0; k < 3; ++k)
-                out.push_back(static_cast<float>(m.V(v, k)));
-    return out;
-}
-
 const glm::vec4 silhouetteColour{0.05f, 0.05f, 0.05f, 1}, suggestiveColour{0.1f, 0.35f, 0.85f, 1}, labelledColour{0.8f, 0.2f, 0.1f, 1};
 
 void addLines(Renderer& r, const ContourLines& lines)
@@ -126,7 +116,7 @@ void writeContourPictures(const ContourPictureOptions& options)
             std::vector<Candidate> cloud;
             {
                 GpuCurvature gpuCurvature(device, faces.shown.F, nv);
-                gpuCurvature.setPositions(flatten(faces.meshes));
+                gpuCurvature.setPositions(meshMajorPositions(faces.meshes));
                 const double curvatureMs = gpuCurvature.run();
                 GpuCandidates candidates(device, gpuCurvature, faces.flags);
                 double cloudMs = 0;

@@ -2,7 +2,6 @@
 
 #include "core/error.h"
 #include "geometry/mesh_batch.h"
-#include "geometry/wedges.h"
 #include "shaders/curvature_comp.h"
 #include "shaders/curvature_derivative_comp.h"
 #include "shaders/normals_comp.h"
@@ -71,14 +70,10 @@ GpuCurvature::GpuCurvature(gpu::Device& device, const Triangles& F, Eigen::Index
 {
     if (vertexCount <= 0 || F.rows() == 0)
         fail("GpuCurvature: need at least one vertex and one triangle (got ", vertexCount, " and ", F.rows(), ")");
-    const Wedges w = buildWedges(F, vertexCount);
     normalsProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(normals_comp), 4, sizeof(NormalsConstants));
     curvatureProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(curvature_comp), 6, sizeof(BatchConstants));
     derivativeProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(curvature_derivative_comp), 9, sizeof(BatchConstants));
-    wedgeOffsets_ = gpu::createBuffer(device_, w.offsets.size() * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    wedges_ = gpu::createBuffer(device_, w.corners.size() * sizeof(w.corners[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    gpu::uploadBuffer(device_, wedgeOffsets_, w.offsets.data(), wedgeOffsets_.size);
-    gpu::uploadBuffer(device_, wedges_, w.corners.data(), wedges_.size);
+    uploadWedges(device_, F, vertexCount, wedgeOffsets_, wedges_);
     timer_ = gpu::createGpuTimer(device_);
 }
 

@@ -4,6 +4,7 @@
 #include "contours/curvature.h"
 #include "contours/curvature_gpu.h"
 #include "core/error.h"
+#include "geometry/mesh_batch.h"
 
 #include <algorithm>
 #include <cmath>
@@ -77,16 +78,6 @@ Eigen::VectorXd flatten(const Mesh& mesh)
     return out;
 }
 
-std::vector<float> flattenFloats(const std::vector<Mesh>& meshes)
-{
-    std::vector<float> out;
-    for (const Mesh& m : meshes)
-        for (Eigen::Index v = 0; v < m.V.rows(); ++v)
-            for (int k = 0; k < 3; ++k)
-                out.push_back(static_cast<float>(m.V(v, k)));
-    return out;
-}
-
 // Per-vertex distances between two 3#V vectors: (mean, max, all).
 std::pair<double, double> errors(const Eigen::VectorXd& a, const Eigen::VectorXd& b, Eigen::VectorXd* perVertex)
 {
@@ -148,7 +139,7 @@ std::vector<ContourEvalResult> evaluateContours(gpu::Device& device, const Conto
     params.featureSize = meanEdgeLength(mean);
 
     GpuCurvature curvature(device, model.triangles, nv);
-    curvature.setPositions(flattenFloats(data.candidateFaces));
+    curvature.setPositions(meshMajorPositions(data.candidateFaces));
     curvature.run();
     GpuCandidates cloudBuilder(device, curvature, data.flags);
 

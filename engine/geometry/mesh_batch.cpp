@@ -1,6 +1,7 @@
 #include "geometry/mesh_batch.h"
 
 #include "core/error.h"
+#include "geometry/wedges.h"
 
 #include <algorithm>
 
@@ -35,6 +36,31 @@ std::vector<float> fromBatchLayout(const std::vector<float>& batch, std::size_t 
             for (std::size_t c = 0; c < 3; ++c)
                 meshMajor[3 * (m * vertexCount + v) + c] = batch[4 * (v * meshCount + m) + c];
     return meshMajor;
+}
+
+std::vector<float> meshMajorPositions(const std::vector<Mesh>& meshes)
+{
+    std::vector<float> out;
+    if (meshes.empty())
+        return out;
+    out.reserve(meshes.size() * static_cast<size_t>(meshes[0].V.size()));
+    for (size_t m = 0; m < meshes.size(); ++m) {
+        if (meshes[m].V.rows() != meshes[0].V.rows())
+            fail("meshMajorPositions: mesh ", m, " has ", meshes[m].V.rows(), " vertices, mesh 0 has ", meshes[0].V.rows());
+        for (Eigen::Index v = 0; v < meshes[m].V.rows(); ++v)
+            for (int k = 0; k < 3; ++k)
+                out.push_back(static_cast<float>(meshes[m].V(v, k)));
+    }
+    return out;
+}
+
+void uploadWedges(gpu::Device& device, const Triangles& F, Eigen::Index vertexCount, gpu::Buffer& offsets, gpu::Buffer& corners)
+{
+    const Wedges w = buildWedges(F, vertexCount);
+    offsets = gpu::createBuffer(device, w.offsets.size() * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    corners = gpu::createBuffer(device, w.corners.size() * sizeof(w.corners[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    gpu::uploadBuffer(device, offsets, w.offsets.data(), offsets.size);
+    gpu::uploadBuffer(device, corners, w.corners.data(), corners.size);
 }
 
 std::uint32_t batchRows(std::uint32_t vertexCount, std::uint32_t meshCount, std::uint32_t groupMeshes, std::uint32_t groupVertices,

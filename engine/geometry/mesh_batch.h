@@ -5,6 +5,9 @@
 // Host code mostly holds mesh-major arrays (mesh, then vertex, then xyz); these functions
 // convert between the two.
 
+#include "core/mesh.h"
+#include "gpu/buffers.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -16,6 +19,14 @@ namespace facesketch {
 std::vector<float> toBatchLayout(const std::vector<float>& meshMajor, std::size_t meshCount, std::size_t vertexCount);
 /// Batch layout back to mesh-major.
 std::vector<float> fromBatchLayout(const std::vector<float>& batch, std::size_t meshCount, std::size_t vertexCount);
+
+/// The vertices of `meshes` as one mesh-major float array (mesh, then vertex, then xyz), the
+/// input of the batch kernels. Throws Error if the meshes differ in vertex count.
+std::vector<float> meshMajorPositions(const std::vector<Mesh>& meshes);
+
+/// Uploads the wedges of F (geometry/wedges.h) that every batch kernel gathers over:
+/// `offsets` (#V + 1 uint) and `corners` (3 #F uvec2), new storage buffers owned by the caller.
+void uploadWedges(gpu::Device& device, const Triangles& F, Eigen::Index vertexCount, gpu::Buffer& offsets, gpu::Buffer& corners);
 
 /// The y extent (vertex rows) to dispatch a batch kernel with, meshes along x: the shaders stride
 /// over vertices, so fewer rows mean more vertices per invocation. Aims at `targetInvocations`

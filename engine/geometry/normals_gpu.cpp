@@ -2,7 +2,6 @@
 
 #include "core/error.h"
 #include "geometry/mesh_batch.h"
-#include "geometry/wedges.h"
 #include "shaders/normals_comp.h"
 #include "shaders/shared.h"
 
@@ -24,12 +23,8 @@ GpuNormals::GpuNormals(gpu::Device& device, const Triangles& F, Eigen::Index ver
 {
     if (vertexCount <= 0 || F.rows() == 0)
         fail("GpuNormals: need at least one vertex and one triangle (got ", vertexCount, " and ", F.rows(), ")");
-    const Wedges w = buildWedges(F, vertexCount);
     program_ = gpu::createComputeProgram(device_, gpu::shaderCode(normals_comp), 4, sizeof(NormalsConstants));
-    wedgeOffsets_ = gpu::createBuffer(device_, w.offsets.size() * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    wedges_ = gpu::createBuffer(device_, w.corners.size() * sizeof(w.corners[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    gpu::uploadBuffer(device_, wedgeOffsets_, w.offsets.data(), wedgeOffsets_.size);
-    gpu::uploadBuffer(device_, wedges_, w.corners.data(), wedges_.size);
+    uploadWedges(device_, F, vertexCount, wedgeOffsets_, wedges_);
     timer_ = gpu::createGpuTimer(device_);
 }
 
