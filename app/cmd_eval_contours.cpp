@@ -28,6 +28,7 @@ struct EvalContoursCommand {
     double suggestive = ContourParams{}.suggestiveThreshold;
     double errorScale = 10.0;
     int refinements = evaluation::ContourEvalOptions{}.refinements;
+    int trim = evaluation::ContourEvalOptions{}.trim;
     bool curve = false;
 };
 
@@ -141,10 +142,11 @@ void runEvalContours(const EvalContoursCommand& c)
     options.imageSize = c.size;
     options.suggestiveThreshold = c.suggestive;
     options.refinements = c.refinements;
+    options.trim = c.trim;
     gpu::ScopedDevice device;
     const std::vector<evaluation::ContourEvalResult> results = evaluation::evaluateContours(*device, data, options);
     std::cout << "# " << data.testFaces.size() << " test faces, cloud of " << data.candidateFaces.size() << " faces, " << m.vertexCount()
-              << " skin vertices, " << c.refinements << " refinements, " << clock.seconds() << " s\n";
+               << " skin vertices, " << c.refinements << " refinements, " << c.trim << " trimming rounds, " << clock.seconds() << " s\n";
     printTable(results);
     if (!c.output.empty())
         writeErrorRenders(c, results);
@@ -188,6 +190,9 @@ void addEvalContoursCommand(CLI::App& eval)
     cmd->add_option("--size", c->size, "Image size in pixels for the screen-space mapping")->capture_default_str()->check(CLI::Range(64, 8192));
     cmd->add_option("--suggestive", c->suggestive, "Suggestive contour threshold")->capture_default_str();
     cmd->add_option("--refinements", c->refinements, "Re-mappings against the reconstruction's own contours (0: the thesis)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 20));
+    cmd->add_option("--trim", c->trim, "Outlier-trimming rounds after each solve (0: none, as the thesis)")
         ->capture_default_str()
         ->check(CLI::Range(0, 20));
     cmd->add_option("-o,--output", c->output, "Folder for colour-coded error renders (blue to red)");

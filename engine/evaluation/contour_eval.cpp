@@ -200,15 +200,41 @@ std::vector<ContourEvalResult> evaluateContours(gpu::Device& device, const Conto
                         slot->second.first += xyz;
                         slot->second.second += 1;
                     }
-                    stats::Observations obs;
-                    for (const auto& [vertex, sum] : observed) {
-                        const Eigen::Vector3d xyz = sum.first / sum.second;
-                        if (mapping == ContourMapping::Projected2D)
-                            obs.addProjectedVertex(vertex, P, P * xyz);
-                        else
-                            obs.addVertex(vertex, xyz);
+                    // Solve, then drop the observations the face disagrees with most (a point
+                    // mapped to the wrong vertex) and solve again: `trim` times.
+                    std::vector<std::pair<Eigen::Index, Eigen::Vector3d>> kept;
+                    for (const auto& [vertex, sum] : observed)
+                        kept.push_back({vertex, sum.first / sum.second});
+                    auto solve = [&] {
+                        stats::Observations obs;
+                        for (const auto& [vertex, xyz] : kept) {
+                            if (mapping == ContourMapping::Projected2D)
+                                obs.addProjectedVertex(vertex, P, P * xyz);
+                            else
+                                obs.addVertex(vertex, xyz);
+                        }
+                        return stats::reconstruct(model, obs, options.reconstruct);
+                    };
+                    stats::Reconstruction solved = solve();
+                    for (int t = 0; mapping != ContourMapping::KnownVertex && t < options.trim && kept.size() > 8; ++t) {
+                        std::vector<double> residual;
+                        for (const auto& [vertex, xyz] : kept) {
+                            const Eigen::Vector3d d = solved.face.segment<3>(3 * vertex) - xyz;
+                            residual.push_back(mapping == ContourMapping::Projected2D ? (P * d).norm() : d.norm());
+                        }
+                        std::vector<double> sorted = residual;
+                        std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+                        const double bar = std::max(options.trimFactor * sorted[sorted.size() / 2], options.trimFloor);
+                        std::vector<std::pair<Eigen::Index, Eigen::Vector3d>> next;
+                        for (size_t i = 0; i < kept.size(); ++i)
+                            if (residual[i] <= bar)
+                                next.push_back(kept[i]);
+                        if (next.size() == kept.size())
+                            break;
+                        kept = std::move(next);
+                        solved = solve();
                     }
-                    return std::make_pair(stats::reconstruct(model, obs, options.reconstruct), static_cast<int>(observed.size()));
+                    return std::make_pair(solved, static_cast<int>(kept.size()));
                 };
                 auto [r, observedCount] = rebuild({});
                 for (int k = 0; mapping != ContourMapping::KnownVertex && k < options.refinements; ++k) {

@@ -43,6 +43,12 @@ struct ContourEvalOptions {
     double suggestiveThreshold = ContourParams{}.suggestiveThreshold;
     stats::ReconstructOptions reconstruct;
     int refinements = 3; ///< re-mappings against the reconstruction's own contours (0: the thesis' method)
+    /// Outlier trimming after each solve of the candidate mappings: observations whose residual
+    /// (3D, or in the view plane for Projected2D) exceeds max(trimFactor x median, trimFloor mm)
+    /// are dropped and the face solved again, up to `trim` times (0: none, as the thesis).
+    int trim = 2;
+    double trimFactor = 3.0;
+    double trimFloor = 1.0;
 };
 
 struct ContourEvalResult {
