@@ -106,16 +106,6 @@ TEST_CASE("renderer: bad sizes and mismatched cameras are errors")
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
 
-TEST_CASE("camera: parseView accepts names and angles, rejects the rest")
-{
-    REQUIRE(parseView("profile").azimuthDeg == 90);
-    REQUIRE(parseView("34").azimuthDeg == 45);
-    REQUIRE(parseView("-30,15").elevationDeg == 15);
-    REQUIRE_THROWS_WITH(parseView("side"), Catch::Contains("view 'side'"));
-    REQUIRE_THROWS_AS(parseView("10,100"), Error);
-    REQUIRE_THROWS_AS(parseView("10,"), Error);
-}
-
 TEST_CASE("colormap: blue at 0, green at 0.5, red at 1, clamped outside")
 {
     REQUIRE(blueToRed(0.0) == glm::vec4(0, 0, 1, 1));
