@@ -41,5 +41,11 @@ int main(int argc, char** argv)
     feenableexcept(FE_INVALID | FE_DIVBYZERO | FE_OVERFLOW);
 #endif
     const int result = Catch::Session().run(argc, argv);
+    const std::uint64_t beforeTeardown = facesketch::gpu::validationMessageCount();
+    facesketch::test::releaseDevice();
+    if (facesketch::gpu::validationMessageCount() != beforeTeardown) {
+        std::fprintf(stderr, "FAILED: Vulkan validation message(s) while destroying the device (objects left alive?)\n");
+        validationFailures = true;
+    }
     return result != 0 ? result : (validationFailures ? 1 : 0);
 }

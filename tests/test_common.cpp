@@ -2,17 +2,23 @@
 
 #include <cfenv>
 #include <fstream>
+#include <optional>
 #include <random>
 
 namespace facesketch::test {
 
 namespace {
-struct DeviceHolder {
-    gpu::Device device;
-    DeviceHolder() : device(gpu::createDevice({.validation = true, .requireValidation = true})) {}
-    ~DeviceHolder() { gpu::destroyDevice(device); }
-};
+std::optional<gpu::ScopedDevice>& holder()
+{
+    static std::optional<gpu::ScopedDevice> device;
+    return device;
+}
 } // namespace
+
+void releaseDevice()
+{
+    holder().reset();
+}
 
 std::uint64_t& validationBaseline()
 {
@@ -26,8 +32,9 @@ gpu::Device& device()
     // its rasteriser set-up), so the traps that the test main arms for our CPU code are lifted
     // for the rest of a process that uses the GPU. ctest runs each test case in its own process.
     fedisableexcept(FE_ALL_EXCEPT);
-    static DeviceHolder holder;
-    return holder.device;
+    if (!holder())
+        holder().emplace(gpu::DeviceOptions{.validation = true, .requireValidation = true});
+    return **holder();
 }
 
 TempDir::TempDir()

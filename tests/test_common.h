@@ -11,6 +11,9 @@ namespace facesketch::test {
 
 /// The process-wide device, created on first use with validation required.
 gpu::Device& device();
+/// Destroys that device (if created), so that what the validation layer reports at teardown,
+/// such as objects never destroyed, is counted before the process ends (tests/main.cpp).
+void releaseDevice();
 
 /// A fresh empty folder under the system temp dir, removed when the object dies.
 class TempDir {

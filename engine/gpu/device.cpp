@@ -3,6 +3,10 @@
 #include "core/error.h"
 
 #include <algorithm>
+#if defined(__SANITIZE_ADDRESS__)
+#include <dlfcn.h>
+#include <link.h>
+#endif
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
@@ -118,6 +122,24 @@ VkPhysicalDevice choosePhysicalDevice(VkInstance instance)
         return deviceRank(pa) < deviceRank(pb);
     });
 }
+
+#if defined(__SANITIZE_ADDRESS__)
+// The Vulkan loader unloads drivers and layers at vkDestroyInstance, and LeakSanitizer cannot
+// name the module of an allocation made by an unloaded library, so tools/lsan.supp could not
+// suppress the driver's process-lifetime allocations. Sanitizer builds pin every loaded Vulkan
+// driver and layer (and LLVM, lavapipe's JIT) until exit.
+void pinVulkanLibraries()
+{
+    dl_iterate_phdr(
+        [](dl_phdr_info* info, size_t, void*) {
+            const char* name = info->dlpi_name;
+            if (name && (std::strstr(name, "libvulkan_") || std::strstr(name, "libVkLayer") || std::strstr(name, "libLLVM")))
+                dlopen(name, RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+            return 0;
+        },
+        nullptr);
+}
+#endif
 
 } // namespace
 
@@ -259,6 +281,9 @@ Device createDevice(const DeviceOptions& options)
     poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     poolInfo.queueFamilyIndex = d.queueFamily;
     VK_CHECK(vkCreateCommandPool(d.device, &poolInfo, nullptr, &d.commandPool));
+#if defined(__SANITIZE_ADDRESS__)
+    pinVulkanLibraries();
+#endif
     return d;
 }
 
