@@ -24,6 +24,7 @@ struct ObserveCommand {
     std::string region;
     double radius = 10.0;
     bool noCorrelation = false;
+    std::string correlation = "joint";
     bool noCleanUp = false;
     std::uint64_t seed = 1;
 };
@@ -40,7 +41,7 @@ void runObserve(const ObserveCommand& c)
     stats::ObserveOptions o;
     o.fraction = c.fraction;
     o.seed = c.seed;
-    o.reconstruct.correlate = !c.noCorrelation;
+    o.reconstruct.correlation = c.noCorrelation ? stats::Correlation::Off : stats::parseCorrelation(c.correlation);
     o.reconstruct.cleanUp = !c.noCleanUp;
     if (!c.region.empty()) {
         o.region = model::featureRegion(ds.manifest, m, c.region, c.radius);
@@ -53,7 +54,7 @@ void runObserve(const ObserveCommand& c)
     std::cout << "# " << s.faces << " test faces of " << c.dataset << ", " << m.vertexCount() << " skin vertices, measured "
               << (c.region.empty() ? "at random" : "region " + c.region) << ": " << 100.0 * s.measuredFraction
               << "% of the vertices; clean-up " << (o.reconstruct.cleanUp ? "on" : "off") << ", correlation "
-              << (o.reconstruct.correlate ? "on" : "off") << "\n";
+              << stats::correlationName(o.reconstruct.correlation) << "\n";
     std::cout << std::setw(14) << "" << std::setw(12) << "mean mm" << std::setw(12) << "max mm" << "\n"
               << std::setw(14) << "reconstruction" << std::setw(12) << s.meanError << std::setw(12) << s.maxError << "\n"
               << std::setw(14) << "mean face" << std::setw(12) << s.meanFaceMeanError << std::setw(12)
@@ -80,7 +81,12 @@ void addObserveCommand(CLI::App& eval)
     cmd->add_option("--region", c->region, "Measure exactly one region's vertices instead (see below)");
     cmd->add_option("--radius", c->radius, "Region radius around its landmarks, mm")
         ->capture_default_str()->check(CLI::Range(0.0, 1000.0));
-    cmd->add_flag("--no-correlation", c->noCorrelation, "Leave unmeasured segments at the mean face (no thesis 4.2.5)");
+    cmd->add_option("--correlation", c->correlation,
+                    "How measured segments inform the others: joint (all measurements condition one whole-face "
+                    "model), thesis (4.2.5: segment latents completed by the correlation mixture) or off")
+        ->check(CLI::IsMember({"joint", "thesis", "off"}))
+        ->capture_default_str();
+    cmd->add_flag("--no-correlation", c->noCorrelation, "Same as --correlation off: unmeasured segments keep the mean face");
     cmd->add_flag("--no-cleanup", c->noCleanUp, "Skip the clean-up projection of each segment (thesis 4.2.4)");
     cmd->add_option("--seed", c->seed, "Seed of the random choice of measured vertices")->capture_default_str();
     cmd->callback([c] { runObserve(*c); });

@@ -48,7 +48,11 @@ constexpr Range kEyeSocketRight{"eye_socket_right", 13678, 14062};
 constexpr Range kEyeLeft{"eye_left", 21451, 23021};
 constexpr Range kEyeRight{"eye_right", 23021, 24591};
 constexpr Range kMouthSocket{"mouth_socket", 11248, 13294};
-constexpr Range kGumsTongue{"gums_tongue", 14062, 17039};
+// ICT's "gums and tongue" range [14062, 17039) is one connected mesh; its last 428 vertices are
+// the tongue body (open at the root, sewn to the floor of the mouth by 25 edges along the
+// frenulum). See import_ict.h for how the split was found.
+constexpr Range kGums{"gums", 14062, 16611};
+constexpr Range kTongue{"tongue", 16611, 17039};
 constexpr Range kTeethUpper{"teeth_upper", 17039, 19247};
 constexpr Range kTeethLower{"teeth_lower", 19247, 21451};
 
@@ -227,6 +231,108 @@ std::vector<int> pathThrough(const Graph& g, const std::vector<int>& anchors, bo
     return out;
 }
 
+// Area-weighted unit vertex normals from the triangles whose three vertices lie in [begin, end);
+// #V by 3, zero rows elsewhere. Outward for counter-clockwise triangles.
+Vertices normalsWithin(const Vertices& V, const Triangles& F, int begin, int end)
+{
+    Vertices N = Vertices::Zero(V.rows(), 3);
+    auto within = [&](int v) { return v >= begin && v < end; };
+    for (Eigen::Index f = 0; f < F.rows(); ++f)
+        if (within(F(f, 0)) && within(F(f, 1)) && within(F(f, 2))) {
+            const Eigen::RowVector3d n =
+                (V.row(F(f, 1)) - V.row(F(f, 0))).cross(V.row(F(f, 2)) - V.row(F(f, 0)));
+            for (int k = 0; k < 3; ++k)
+                N.row(F(f, k)) += n;
+        }
+    for (Eigen::Index v = 0; v < N.rows(); ++v)
+        if (N.row(v).squaredNorm() > 0)
+            N.row(v).normalize();
+    return N;
+}
+
+// nostril_l (side +1) or nostril_r (side -1), the rule of import_ict.h: the boundary of the
+// nostril's cavity, grown from its deepest vertex, as a closed loop starting nearest sbal.
+// The cavity's vertices inside the rim are appended to `hidden`: seen only from below the nose,
+// they are no contour candidates (thesis 4.3.3).
+std::vector<int> nostrilRing(const Vertices& V, const Triangles& F, const Graph& g, const Vertices& normals,
+                             const std::vector<int>& pie, int side, std::vector<int>& hidden)
+{
+    const int skinEnd = static_cast<int>(g.size());
+    const char* name = side > 0 ? "nostril_l" : "nostril_r";
+    const int sbal = pie[side > 0 ? 35 : 31], sn = pie[33];
+    // The nose base plane through both sbal and Multi-PIE 30; `out` leaves the nose through it
+    // (down and forward), `depth` is the height above it into the nose.
+    const Eigen::RowVector3d right = V.row(pie[31]);
+    const Eigen::RowVector3d out = (V.row(pie[35]) - right).cross(V.row(pie[30]) - right).normalized();
+    auto depth = [&](int v) { return (right - V.row(v)).dot(out); };
+    int apex = -1;
+    for (int v = 0; v < skinEnd; ++v)
+        if (side * V(v, 0) > 0 && side * V(v, 0) < side * V(sbal, 0) && (V.row(v) - V.row(sn)).norm() < 20 &&
+            (apex < 0 || depth(v) > depth(apex)))
+            apex = v;
+    if (apex < 0)
+        fail("import ict-facekit: ", name, ": no skin vertex between sn and sbal (region too small?)");
+
+    std::vector<char> inside(static_cast<size_t>(skinEnd), 0);
+    std::vector<int> stack{apex};
+    inside[static_cast<size_t>(apex)] = 1;
+    auto grow = [&](const std::function<bool(int)>& keep) {
+        while (!stack.empty()) {
+            const int v = stack.back();
+            stack.pop_back();
+            for (const auto& [w, length] : g[static_cast<size_t>(v)])
+                if (!inside[static_cast<size_t>(w)] && keep(w)) {
+                    inside[static_cast<size_t>(w)] = 1;
+                    stack.push_back(w);
+                }
+        }
+    };
+    // The deep vestibule, then its walls out to where the skin turns to face out of the nose base.
+    grow([&](int w) { return depth(w) > 4; });
+    for (int v = 0; v < skinEnd; ++v)
+        if (inside[static_cast<size_t>(v)])
+            stack.push_back(v);
+    grow([&](int w) { return normals.row(w).dot(out) < 0.3; });
+
+    // The boundary of the triangles inside: directed edges without their reverse.
+    std::set<std::pair<int, int>> edges;
+    for (Eigen::Index f = 0; f < F.rows(); ++f) {
+        bool all = true;
+        for (int k = 0; k < 3; ++k)
+            all = all && F(f, k) < skinEnd && inside[static_cast<size_t>(F(f, k))];
+        if (all)
+            for (int k = 0; k < 3; ++k)
+                edges.insert({F(f, k), F(f, (k + 1) % 3)});
+    }
+    std::map<int, int> next;
+    for (const auto& [a, b] : edges)
+        if (!edges.count({b, a}) && !next.emplace(a, b).second)
+            fail("import ict-facekit: ", name, ": the nostril's rim passes vertex ", a, " twice");
+    if (next.empty())
+        fail("import ict-facekit: ", name, ": no nostril cavity found at vertex ", apex);
+    std::vector<int> ring{next.begin()->first};
+    while (ring.size() <= next.size()) {
+        const auto it = next.find(ring.back());
+        if (it == next.end() || it->second == ring.front())
+            break;
+        ring.push_back(it->second);
+    }
+    if (ring.size() != next.size())
+        fail("import ict-facekit: ", name, ": the nostril's rim is not one closed loop (", ring.size(), " of ",
+             next.size(), " edges)");
+    auto fromSbal = [&](int v) { return (V.row(v) - V.row(sbal)).norm(); };
+    for (int v : ring)
+        if (fromSbal(v) > 25)
+            fail("import ict-facekit: ", name, ": rim vertex ", v, " is ", fromSbal(v), " mm from sbal (cavity leaked)");
+    std::rotate(ring.begin(), std::min_element(ring.begin(), ring.end(), [&](int a, int b) { return fromSbal(a) < fromSbal(b); }),
+                ring.end());
+    const std::set<int> rim(ring.begin(), ring.end());
+    for (int v = 0; v < skinEnd; ++v)
+        if (inside[static_cast<size_t>(v)] && !rim.count(v))
+            hidden.push_back(v);
+    return ring;
+}
+
 // The geometric labelling rules of import_ict.h, on the region's neutral in mm.
 void labelSkin(Manifest& m, const Vertices& V, const std::vector<int>& pie, int skinEnd, int prn)
 {
@@ -313,6 +419,9 @@ void labelSkin(Manifest& m, const Vertices& V, const std::vector<int>& pie, int 
     C["lip_lower_outer"] = pathThrough(g, {pie[48], pie[59], pie[58], pie[57], pie[56], pie[55], pie[54]});
     C["lip_upper_inner"] = pathThrough(g, {pie[48], pie[60], pie[61], pie[62], pie[63], pie[64], pie[54]});
     C["lip_lower_inner"] = pathThrough(g, {pie[48], pie[60], pie[67], pie[66], pie[65], pie[64], pie[54]});
+    const Vertices normals = normalsWithin(V, m.topology, 0, skinEnd);
+    C["nostril_l"] = nostrilRing(V, m.topology, g, normals, pie, 1, m.excluded);
+    C["nostril_r"] = nostrilRing(V, m.topology, g, normals, pie, -1, m.excluded);
     auto& M = m.mpeg4;
     M["2.1"] = L["gn"];
     M["2.2"] = pie[62];
@@ -439,6 +548,39 @@ void labelLowerTeeth(Manifest& m, const Vertices& V, const Component& teeth)
     m.mpeg4["9.11"] = left[2].second;
 }
 
+// Group 6 on the tongue (import_ict.h): tip, dorsum centre and the two borders at mid depth.
+void labelTongue(Manifest& m, const Vertices& V, const Component& tongue)
+{
+    const Vertices N = normalsWithin(V, m.topology, tongue.begin, tongue.end);
+    int tip = -1;
+    double back = std::numeric_limits<double>::infinity();
+    for (int v = tongue.begin; v < tongue.end; ++v) {
+        back = std::min(back, V(v, 2));
+        if (std::abs(V(v, 0)) < 2 && (tip < 0 || V(v, 2) > V(tip, 2)))
+            tip = v;
+    }
+    if (tip < 0)
+        fail("import ict-facekit: the tongue [", tongue.begin, ", ", tongue.end, ") has no vertex near the midline");
+    const double mid = 0.5 * (V(tip, 2) + back);
+    int centre = -1, left = -1, right = -1;
+    for (int v = tongue.begin; v < tongue.end; ++v) {
+        if (std::abs(V(v, 2) - mid) >= 3)
+            continue;
+        if (std::abs(V(v, 0)) < 1 && (centre < 0 || V(v, 1) > V(centre, 1)))
+            centre = v;
+        if (N(v, 1) > 0 && (left < 0 || V(v, 0) > V(left, 0)))
+            left = v;
+        if (N(v, 1) > 0 && (right < 0 || V(v, 0) < V(right, 0)))
+            right = v;
+    }
+    if (centre < 0 || left < 0 || right < 0)
+        fail("import ict-facekit: the tongue [", tongue.begin, ", ", tongue.end, ") has no midline or upper surface vertex at mid depth");
+    m.mpeg4["6.1"] = tip;
+    m.mpeg4["6.2"] = centre;
+    m.mpeg4["6.3"] = left;
+    m.mpeg4["6.4"] = right;
+}
+
 } // namespace
 
 const char* ictRegionName(IctRegion region)
@@ -508,7 +650,7 @@ IctModel loadIctModel(const fs::path& path, const IctOptions& options, const std
         for (const Range& r : {kEyeSocketLeft, kEyeSocketRight, kEyeLeft, kEyeRight})
             ranges.push_back(r);
     if (options.mouth)
-        for (const Range& r : {kMouthSocket, kGumsTongue, kTeethUpper, kTeethLower})
+        for (const Range& r : {kMouthSocket, kGums, kTongue, kTeethUpper, kTeethLower})
             ranges.push_back(r);
     std::vector<int> newIndex(kIctVertexCount, -1), kept;
     IctModel model;
@@ -576,8 +718,10 @@ IctModel loadIctModel(const fs::path& path, const IctOptions& options, const std
     }
     labelSkin(m, model.neutral, landmarks, skinEnd,
               robustTip(model.neutral, model.identityModes, landmarks, skinEnd));
-    if (options.mouth)
+    if (options.mouth) {
+        labelTongue(m, model.neutral, *m.component("tongue"));
         labelLowerTeeth(m, model.neutral, *m.component("teeth_lower"));
+    }
     validateManifest(m, "import ict-facekit");
     return model;
 }

@@ -19,10 +19,19 @@
 //
 // Region. The skin is a prefix of ICT's vertex order (README "Regions"): narrow face
 // [0, 6706), face [0, 9409) or head and neck [0, 11248). --with-eyes adds the eye sockets and
-// eyeballs, --with-mouth the mouth socket, gums and tongue (one connected mesh in ICT, so one
-// component "gums_tongue") and the upper and lower teeth. Triangles are those of the neutral
-// (quads split in a fan) whose three vertices are kept. Socket vertices are "excluded"
-// (inside the head, never contour candidates).
+// eyeballs, --with-mouth the mouth socket, the gums ("gums": the rest of ICT's gums and tongue
+// mesh, with the floor and the back of the mouth), the tongue ("tongue") and the upper and lower teeth. ICT's gums and tongue
+// [14062, 17039) are one connected mesh; its last 428 vertices, [16611, 17039), are the tongue
+// body, open at the root and sewn to the floor of the mouth by 25 edges along the frenulum. The
+// split was found on the neutral by a rule that ignores the vertex order: among the jaw-borne
+// gums/tongue vertices (jawOpen moves them more than 5 mm), the floor of the mouth is those with
+// jaw-borne surface more than 0.5 mm directly above them, none below, and a normal not pointing
+// down (n_y > -0.5); the tongue is what stays connected to the highest midline jaw-borne vertex
+// when the floor is removed. That gives 426 vertices: [16611, 17039) less 4 at the frenulum seam
+// plus 2 floor vertices on the seam, so the range is used as it is. Triangles are those of the
+// neutral (quads split in a fan) whose three vertices are kept. Socket vertices are "excluded"
+// (inside the head, never contour candidates), and so are the skin vertices inside each
+// nostril rim (the cavity, seen only from below).
 //
 // Labels (names as docs/dataset-format.md). Landmarks come from the Multi-PIE points (0-based
 // iBUG numbering; 0..16 jaw line from the face's right, 17..21 right brow, 22..26 left brow,
@@ -46,11 +55,21 @@
 // neutral) through landmarks in order, with back-tracking cut where consecutive legs overlap so
 // that no vertex repeats: eyebrows 21..17 and 22..26 (medial to lateral), eye
 // socket loops (en, upper lid, ex, lower lid), outer lips ch_r..ch_l over 49..53 and 59..55,
-// inner lips ch_r, 60, 61..63 or 67..65, 64, ch_l. No nostril rings yet: ICT's nostrils are
-// deep cavities and no simple rule tried so far gave a clean ring around the opening. MPEG-4 points
-// follow docs/dataset-format.md; the 2 lower-teeth points need --with-mouth (9.10: top of the
-// lower teeth nearest the midline; 9.11: top of the third lower tooth on the left). The 4
-// tongue points (group 6) are not written: ICT's tongue is not separable from the gums.
+// inner lips ch_r, 60, 61..63 or 67..65, 64, ch_l. Nostril rings (closed loops, starting at the
+// vertex nearest sbal) are the rims of ICT's deep nostril cavities: take the nose base plane
+// through sbal_r, sbal_l and point 30, with normal c out of the nose (down and forward); the
+// apex is the skin vertex deepest above that plane among those within 2 cm of sn and between
+// the midline and that side's sbal; grow the cavity from it over skin edges through vertices
+// more than 4 mm above the plane, then on through vertices whose normal n has n.c < 0.3 (the
+// cavity walls, out to where the skin turns to face out of the nose base); the ring is the
+// boundary of the cavity's triangles (27 vertices each on ICT's neutral; the same ring for
+// thresholds 4-6 mm). MPEG-4 points follow docs/dataset-format.md; the 2 lower-teeth and the 4
+// tongue points need --with-mouth. 9.10: top of the lower teeth nearest the midline; 9.11: top
+// of the third lower tooth on the left. 6.1: the most forward (+z) tongue vertex within 2 mm of
+// the midline; with the mid depth halfway between 6.1 and the tongue's back (least z), and
+// looking only at tongue vertices within 3 mm of it: 6.2 the highest within 1 mm of the
+// midline; 6.3 (left) and 6.4 (right) the vertices of greatest and least x among those whose
+// normal points up (the borders of the upper surface).
 //
 // Poses (--poses): 36 poses with the names of the synthetic set (face_poses.h), each a
 // weighted sum of ICT expression deltas, expression_k - neutral, added to the identity. The

@@ -3,6 +3,8 @@
 #include "core/error.h"
 #include "stats/check.h"
 
+#include <Eigen/QR>
+
 #include <algorithm>
 #include <iomanip>
 #include <sstream>
@@ -20,6 +22,13 @@ std::vector<int> localIndex(const Segmentation& seg, int s, Eigen::Index vertice
     for (size_t i = 0; i < members.size(); ++i)
         local[static_cast<size_t>(members[i])] = static_cast<int>(i);
     return local;
+}
+
+// Thesis 4.2.4: the closest point of the segment's clean-up subspace.
+Eigen::VectorXd cleanUpSegment(const SegmentModel& sm, const Eigen::VectorXd& part)
+{
+    const Eigen::VectorXd centred = part - sm.cleanUp.mean;
+    return sm.cleanUp.mean + sm.cleanUpBasis * (sm.cleanUpBasis.transpose() * centred);
 }
 
 } // namespace
@@ -73,7 +82,7 @@ FaceModel trainFaceModel(const Eigen::MatrixXd& faces, const Triangles& triangle
         SegmentModel sm;
         sm.mixture = fit.model;
         sm.logLikelihood = fit.logLikelihood.back() / static_cast<double>(n);
-        sm.cleanUp = fitPpca(Xs, static_cast<int>(std::clamp<Eigen::Index>(options.cleanUpDim, 1, std::min(d - 1, n - 1))));
+        sm.cleanUp = fitPpca(Xs, static_cast<int>(std::clamp<Eigen::Index>(options.cleanUpDim, 1, std::min(d - 1, n - 2))));
         model.segments.push_back(std::move(sm));
         report("segment " + std::to_string(s + 1) + " of " + std::to_string(segments),
                (s + 1.0) / (segments + 1.0));
@@ -96,8 +105,73 @@ FaceModel trainFaceModel(const Eigen::MatrixXd& faces, const Triangles& triangle
         o.components = static_cast<int>(std::clamp<Eigen::Index>(options.correlationComponents, 1, n / (o.latentDim + 2)));
         model.correlation = fitMppca(L, o).model;
     }
+    deriveFaceModel(model);
     report("done", 1.0);
     return model;
+}
+
+Mppca composeCorrelation(const FaceModel& model)
+{
+    const Segmentation& seg = model.segmentation;
+    const size_t segments = model.segments.size();
+    Mppca joint;
+    joint.priors = model.correlation.priors;
+    for (const Ppca& c : model.correlation.components) {
+        std::vector<Eigen::VectorXd> means(segments);
+        std::vector<Eigen::MatrixXd> loadings(segments);
+        double noise = 0, coordinates = 0;
+        Eigen::Index offset = 0;
+        for (size_t s = 0; s < segments; ++s) {
+            const Ppca& p = model.segments[s].cleanUp;
+            const Eigen::Index q = p.latentDim();
+            // The decoder of eq. 4.20, t = mu + D x with D = W (W^T W)^+ M, as fromLatent.
+            const Eigen::MatrixXd D = fromLatent(p, Eigen::MatrixXd::Identity(q, q)).transpose().colwise() - p.mean;
+            means[s] = p.mean + D * c.mean.segment(offset, q);
+            loadings[s] = D * c.W.middleRows(offset, q);
+            noise += static_cast<double>(p.dim()) * p.sigma2 + c.sigma2 * D.squaredNorm();
+            coordinates += static_cast<double>(p.dim());
+            offset += q;
+        }
+        Ppca face;
+        face.mean = blendSegments(seg, means);
+        face.W.resize(face.mean.size(), c.latentDim());
+        std::vector<Eigen::VectorXd> column(segments);
+        for (Eigen::Index j = 0; j < c.latentDim(); ++j) {
+            for (size_t s = 0; s < segments; ++s)
+                column[s] = loadings[s].col(j);
+            face.W.col(j) = blendSegments(seg, column);
+        }
+        face.sigma2 = noise / coordinates;
+        joint.components.push_back(std::move(face));
+    }
+    return joint;
+}
+
+void deriveFaceModel(FaceModel& model)
+{
+    model.joint = composeCorrelation(model);
+    for (SegmentModel& sm : model.segments) {
+        const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(sm.cleanUp.W);
+        sm.cleanUpBasis = qr.householderQ() * Eigen::MatrixXd::Identity(sm.cleanUp.dim(), qr.rank());
+    }
+}
+
+const char* correlationName(Correlation correlation)
+{
+    switch (correlation) {
+    case Correlation::Off: return "off";
+    case Correlation::Thesis: return "thesis";
+    case Correlation::Joint: return "joint";
+    }
+    return "?";
+}
+
+Correlation parseCorrelation(const std::string& text)
+{
+    for (Correlation c : {Correlation::Off, Correlation::Thesis, Correlation::Joint})
+        if (text == correlationName(c))
+            return c;
+    fail("correlation '", text, "' is not one of off, thesis, joint");
 }
 
 std::string describe(const FaceModel& model)
@@ -122,9 +196,26 @@ Reconstruction reconstruct(const FaceModel& model, const Observations& observati
     observations.validate(3 * vertices);
     const Segmentation& seg = model.segmentation;
     const int segments = seg.size();
+    Reconstruction result;
+
+    // Joint: all measurements condition the whole-face mixture at once.
+    if (options.correlation == Correlation::Joint && model.joint.size() > 0) {
+        const Inference joint = infer(model.joint, observations);
+        result.jointWinner = joint.winner;
+        std::vector<Eigen::VectorXd> parts(static_cast<size_t>(segments));
+        for (int s = 0; s < segments; ++s) {
+            const SegmentModel& sm = model.segments[static_cast<size_t>(s)];
+            const Eigen::VectorXd part = joint.reconstruction(segmentCoordinates(seg, s));
+            parts[static_cast<size_t>(s)] = options.cleanUp ? cleanUpSegment(sm, part) : part;
+            Eigen::Index best = 0;
+            componentLogLikelihoods(sm.mixture, parts[static_cast<size_t>(s)].transpose()).row(0).maxCoeff(&best);
+            result.winners.push_back(static_cast<int>(best));
+        }
+        result.face = blendSegments(seg, parts);
+        return result;
+    }
 
     // Step 1: infer every measured segment from its own measurements.
-    Reconstruction result;
     result.winners.assign(static_cast<size_t>(segments), -1);
     std::vector<Eigen::VectorXd> parts(static_cast<size_t>(segments));
     bool anyMeasured = false, anyUnmeasured = false;
@@ -138,15 +229,14 @@ Reconstruction reconstruct(const FaceModel& model, const Observations& observati
         anyMeasured = true;
         const Inference inference = infer(sm.mixture, local);
         result.winners[static_cast<size_t>(s)] = inference.winner;
-        parts[static_cast<size_t>(s)] = options.cleanUp
-                                            ? Eigen::VectorXd(cleanUp(sm.cleanUp, inference.reconstruction.transpose()).transpose())
-                                            : inference.reconstruction;
+        parts[static_cast<size_t>(s)] = options.cleanUp ? cleanUpSegment(sm, inference.reconstruction)
+                                                        : inference.reconstruction;
     }
 
     // Steps 2-4 of thesis 4.2.5: the measured segments' latents are the known part of a
     // latent vector; the correlation mixture fills in the rest, rebuilt by eq. 4.20.
     Eigen::VectorXd latents;
-    if (options.correlate && anyMeasured && anyUnmeasured && model.correlation.size() > 0) {
+    if (options.correlation != Correlation::Off && anyMeasured && anyUnmeasured && model.correlation.size() > 0) {
         Observations known;
         Eigen::Index offset = 0;
         for (int s = 0; s < segments; ++s) {

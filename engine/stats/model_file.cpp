@@ -315,6 +315,7 @@ FaceModel loadFaceModel(const std::filesystem::path& path)
         validateHeadLayout(layout, vertices, path.string() + ": inconsistent model");
     else if (!layout.parts.empty() || layout.topology.size() > 0)
         inconsistent("rigid parts or head triangles without a head");
+    deriveFaceModel(model);
     return model;
 }
 

@@ -53,6 +53,12 @@ std::string bytes(const fs::path& p)
     return s.str();
 }
 
+// Contours that close on themselves (docs/dataset-format.md).
+bool isLoop(const std::string& contour)
+{
+    return contour.rfind("eye_socket", 0) == 0 || contour.rfind("nostril", 0) == 0;
+}
+
 bool isEdgePath(const Triangles& F, const std::vector<int>& path, bool closed)
 {
     std::set<std::pair<int, int>> edges;
@@ -113,14 +119,31 @@ TEST_CASE("import_ict: 10 identities put every landmark on its feature, in mm, w
     REQUIRE(d.manifest.units == "mm");
     const Component& skin = *d.manifest.component("skin");
     REQUIRE(skin.size() == 9409);
-    for (const char* c : {"eye_left", "eye_right", "teeth_upper", "teeth_lower", "gums_tongue"})
+    for (const char* c : {"eye_left", "eye_right", "teeth_upper", "teeth_lower", "gums", "tongue"})
         REQUIRE(d.manifest.component(c));
-    REQUIRE(d.manifest.mpeg4.size() == 42); // 40 skin + 2 lower teeth; tongue points not separable in ICT
+    REQUIRE(d.manifest.mpeg4.size() == 46); // thesis 5.2: 40 skin, 4 tongue, 2 lower teeth
+    const Component& tongue = *d.manifest.component("tongue");
+    for (const char* p : {"6.1", "6.2", "6.3", "6.4"})
+        REQUIRE(tongue.contains(m.mpeg4.at(p)));
     for (const auto& [name, path] : m.contours) {
         INFO(name);
-        REQUIRE(isEdgePath(m.topology, path, name.rfind("eye_socket", 0) == 0));
+        REQUIRE(isEdgePath(m.topology, path, isLoop(name)));
         REQUIRE(std::set<int>(path.begin(), path.end()).size() == path.size()); // no vertex twice
+        for (int v : path)
+            REQUIRE(skin.contains(v));
     }
+    REQUIRE(m.contours.count("nostril_l"));
+    REQUIRE(m.contours.count("nostril_r"));
+    // The cavity inside each rim is hidden from contour candidates; the rims themselves are not.
+    std::set<int> hiddenSkin;
+    for (int v : m.excluded)
+        if (skin.contains(v))
+            hiddenSkin.insert(v);
+    for (const char* ring : {"nostril_l", "nostril_r"})
+        for (int v : m.contours.at(ring))
+            REQUIRE(!hiddenSkin.count(v));
+    const std::set<int> all(m.excluded.begin(), m.excluded.end());
+    REQUIRE(all.size() == m.excluded.size());
     const auto& L = m.landmarks;
     std::vector<double> heights;
     for (const Sample& s : d.manifest.samples) {
@@ -183,6 +206,48 @@ TEST_CASE("import_ict: 10 identities put every landmark on its feature, in mm, w
         REQUIRE(V(L.at("pg"), 1) > V(L.at("gn"), 1));
         REQUIRE(V(L.at("ps_l"), 1) > V(L.at("pi_l"), 1));
         REQUIRE(V(L.at("os_l"), 1) > V(L.at("ps_l"), 1));
+        // Nostril rings: each around its own nostril, below prn and beside sn, medial to its sbal.
+        // ICT's nostril openings run up to about 21 mm forward from sbal (250 identities, seed 1).
+        for (int side : {1, -1}) {
+            const std::string sfx = side > 0 ? "_l" : "_r";
+            const std::vector<int>& ring = m.contours.at("nostril" + sfx);
+            Eigen::RowVector3d centre = Eigen::RowVector3d::Zero();
+            double far = 0;
+            for (int v : ring) {
+                centre += V.row(v) / static_cast<double>(ring.size());
+                far = std::max(far, (V.row(v) - V.row(L.at("sbal" + sfx))).norm());
+            }
+            INFO("nostril" << sfx << ": " << ring.size() << " vertices, centroid (" << centre << "), farthest "
+                           << far << " mm from sbal");
+            REQUIRE(ring.size() >= 12);
+            REQUIRE(side * centre(0) > 2);
+            REQUIRE(side * centre(0) < side * V(L.at("sbal" + sfx), 0));
+            REQUIRE(centre(1) > V(L.at("sn"), 1));
+            REQUIRE(centre(1) < V(L.at("prn"), 1));
+            REQUIRE(far < 25);
+            int hiddenNear = 0;
+            for (int v : hiddenSkin)
+                if ((V.row(v) - V.row(L.at("sbal" + sfx))).norm() < 25 && side * V(v, 0) > 0)
+                    ++hiddenNear;
+            REQUIRE(hiddenNear >= 10);
+        }
+        for (int v : hiddenSkin) // only the nostril cavities are hidden skin
+            REQUIRE(std::min((V.row(v) - V.row(L.at("sbal_l"))).norm(), (V.row(v) - V.row(L.at("sbal_r"))).norm()) < 25);
+        // Tongue: 6.1 the most forward tongue vertex, 6.2 on the midline behind it and above the
+        // borders, 6.3 (left) at +x and 6.4 (right) at -x.
+        const Eigen::Index first = tongue.begin;
+        Eigen::Index ahead = 0;
+        V.middleRows(first, tongue.size()).col(2).maxCoeff(&ahead);
+        const double tipBehind = V(first + ahead, 2) - V(m.mpeg4.at("6.1"), 2);
+        INFO("6.1 is " << tipBehind << " mm behind the most forward tongue vertex");
+        REQUIRE(tipBehind < 1);
+        REQUIRE(std::abs(V(m.mpeg4.at("6.1"), 0)) < 2);
+        REQUIRE(std::abs(V(m.mpeg4.at("6.2"), 0)) < 2);
+        REQUIRE(V(m.mpeg4.at("6.1"), 2) - V(m.mpeg4.at("6.2"), 2) > 15);
+        REQUIRE(V(m.mpeg4.at("6.3"), 0) > 15);
+        REQUIRE(V(m.mpeg4.at("6.4"), 0) < -15);
+        for (const char* border : {"6.3", "6.4"})
+            REQUIRE(V(m.mpeg4.at("6.2"), 1) > V(m.mpeg4.at(border), 1));
     }
     // Distinct identities.
     REQUIRE(*std::max_element(heights.begin(), heights.end()) - *std::min_element(heights.begin(), heights.end()) > 1);
@@ -218,6 +283,7 @@ TEST_CASE("import_ict: poses move what they should")
     IctOptions o;
     o.identities = 1;
     o.poses = true;
+    o.mouth = true;
     o.recipes = recipes();
     const Manifest m = writeIctDataset(ictDir(), dir / "posed", o);
     REQUIRE(m.poses.size() == 36);
@@ -230,6 +296,13 @@ TEST_CASE("import_ict: poses move what they should")
     const Vertices jaw = pose("jaw_open");
     REQUIRE(neutral(L.at("gn"), 1) - jaw(L.at("gn"), 1) > 10);
     REQUIRE((jaw.row(L.at("prn")) - neutral.row(L.at("prn"))).norm() < 1);
+    // ... and carries the whole tongue with it, as it does the lower teeth.
+    const Component& tongue = *m.component("tongue");
+    double least = 1e9;
+    for (int v = tongue.begin; v < tongue.end; ++v)
+        least = std::min(least, (jaw.row(v) - neutral.row(v)).norm());
+    INFO("the tongue vertex that jaw_open moves least moves " << least << " mm");
+    REQUIRE(least > 10);
     // Blink: upper lids come down to the lower lids.
     const Vertices blink = pose("blink");
     for (const char* s : {"_l", "_r"}) {
@@ -291,7 +364,7 @@ TEST_CASE("import_ict: --vertices keeps every label and contour edge on the coar
     for (const auto& [name, path] : coarse.contours) {
         INFO(name);
         REQUIRE(path.size() == full.contours.at(name).size());
-        REQUIRE(isEdgePath(coarse.topology, path, name.rfind("eye_socket", 0) == 0));
+        REQUIRE(isEdgePath(coarse.topology, path, isLoop(name)));
     }
     // Labelled vertices sit where they sat before simplification.
     const Dataset a = openDataset(dir / "full"), b = openDataset(dir / "coarse");

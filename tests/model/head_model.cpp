@@ -109,7 +109,7 @@ TEST_CASE("head_model: with correlation the unmeasured segments come closer to t
         for (int v : region)
             obs.addVertex(v, truth.segment<3>(3 * v));
         ReconstructOptions off;
-        off.correlate = false;
+        off.correlation = Correlation::Off;
         const Eigen::VectorXd a = reconstruct(t.model, obs).face, b = reconstruct(t.model, obs, off).face;
         for (int v : unmeasured) {
             with += (a.segment<3>(3 * v) - truth.segment<3>(3 * v)).norm();
@@ -203,7 +203,7 @@ TEST_CASE("head_model: datasets without a nose tip or train faces are refused")
     REQUIRE_THROWS_WITH(model::trainHeadModel(ds), Catch::Contains("no landmark \"prn\""));
 }
 
-TEST_CASE("head_model: an ICT-FaceKit import observed at 15% at random gives under half the mean-face error")
+TEST_CASE("head_model: an ICT-FaceKit import observed at 15% at random or at one region gives under half the mean-face error")
 {
     const std::filesystem::path ict = "/work/shared/datasets/ict-facekit";
     if (!std::filesystem::exists(ict / "FaceXModel" / "generic_neutral_mesh.obj")) {
@@ -212,12 +212,17 @@ TEST_CASE("head_model: an ICT-FaceKit import observed at 15% at random gives und
     }
     test::TempDir dir;
     dataset::IctOptions io;
-    io.identities = 80; // 58 train, 15 contour, 7 test
+    io.identities = 250; // 182 train, 48 contour, 20 test, as the thesis split them
     io.vertices = 1500;
     io.eyes = true;
     dataset::writeIctDataset(ict, dir / "ict", io);
     const dataset::Dataset ds = dataset::openDataset(dir / "ict");
-    const FaceModel model = model::trainHeadModel(ds, test::smallHeadOptions());
+    // The default clean-up and correlation dimensions: ICT's ~100 identity modes move the whole
+    // face, and the joint model needs room for them.
+    model::HeadModelOptions options = test::smallHeadOptions();
+    options.face.cleanUpDim = stats::FaceModelOptions{}.cleanUpDim;
+    options.face.correlationLatentDim = stats::FaceModelOptions{}.correlationLatentDim;
+    const FaceModel model = model::trainHeadModel(ds, options);
     const Eigen::MatrixXd test = dataset::loadShapes(ds, dataset::Role::Test, "skin");
     REQUIRE(test.rows() >= 5);
 
@@ -227,19 +232,22 @@ TEST_CASE("head_model: an ICT-FaceKit import observed at 15% at random gives und
     o.region = model::featureRegion(ds.manifest, model, "mouth_chin", 10.0);
     const double share = double(o.region.size()) / double(model.vertexCount());
     const ObserveScore region = evaluateObserve(model, test, o);
-    o.reconstruct.correlate = false;
+    o.reconstruct.correlation = Correlation::Thesis;
+    const ObserveScore thesis = evaluateObserve(model, test, o);
+    o.reconstruct.correlation = Correlation::Off;
     const ObserveScore uncorrelated = evaluateObserve(model, test, o);
     std::cout << "ICT import, " << model.vertexCount() << " skin vertices, " << random.faces << " test faces: 15% random "
               << random.meanError << " mm (max " << random.maxError << "); mouth_chin (" << 100.0 * share << "%) "
-              << region.meanError << " mm, without correlation " << uncorrelated.meanError << " mm; mean face "
-              << random.meanFaceMeanError << " mm\n";
+              << region.meanError << " mm, thesis correlation " << thesis.meanError << " mm, without correlation "
+              << uncorrelated.meanError << " mm; mean face " << random.meanFaceMeanError << " mm\n";
     CHECK(random.meanError < 0.5 * random.meanFaceMeanError);
-    // One region does not reach half on ICT (about 0.65 of the mean face's error): its ~100
-    // identity modes each move the whole face, and 58 training faces cannot learn how one
-    // region predicts the rest. Required: better than the mean face, and better with the
-    // correlation than without.
-    CHECK(region.meanError < region.meanFaceMeanError);
-    CHECK(region.meanError < uncorrelated.meanError);
+    CHECK(share < 0.2);
+    CHECK(region.meanError < 0.5 * region.meanFaceMeanError);
+    // The thesis' route (4.2.5) does not reach half on ICT (about 0.7 of the mean face): its
+    // identity modes each move the whole face, and a segment seen at a few border vertices
+    // passes on a poorly determined latent. Both routes beat no correlation.
+    CHECK(region.meanError < thesis.meanError);
+    CHECK(thesis.meanError < uncorrelated.meanError);
     // The whole head comes back, eyeballs included.
     Observations obs;
     for (int v : o.region)

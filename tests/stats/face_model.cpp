@@ -107,22 +107,26 @@ TEST_CASE("face_model: correlation brings unmeasured segments closer to the trut
             measured.push_back(v);
     REQUIRE(measured.size() >= 10);
 
-    double with = 0.0, without = 0.0, meanError = 0.0;
+    double joint = 0.0, thesis = 0.0, without = 0.0, meanError = 0.0;
     size_t scored = 0;
     for (Eigen::Index f = 0; f < t.test.rows(); ++f) {
         const Eigen::VectorXd truth = t.test.row(f).transpose();
         Observations obs;
         for (int v : measured)
             obs.addVertex(v, truth.segment<3>(3 * v));
-        ReconstructOptions on, off;
-        off.correlate = false;
-        const Reconstruction a = reconstruct(t.model, obs, on), b = reconstruct(t.model, obs, off);
-        REQUIRE(a.winners == b.winners);
+        ReconstructOptions onJoint, onThesis, off;
+        onThesis.correlation = Correlation::Thesis;
+        off.correlation = Correlation::Off;
+        const Reconstruction a = reconstruct(t.model, obs, onJoint), b = reconstruct(t.model, obs, onThesis),
+                             c = reconstruct(t.model, obs, off);
+        REQUIRE(b.winners == c.winners);
+        REQUIRE(a.jointWinner == 0);
+        REQUIRE(c.jointWinner == -1);
         std::vector<int> unmeasured;
         for (int v = 0; v < kSide * kSide; ++v) {
             bool held = false;
             for (int s = 0; s < seg.size(); ++s)
-                if (a.winners[static_cast<size_t>(s)] >= 0)
+                if (c.winners[static_cast<size_t>(s)] >= 0)
                     held = held || std::binary_search(seg.vertices[static_cast<size_t>(s)].begin(),
                                                       seg.vertices[static_cast<size_t>(s)].end(), v);
             if (!held)
@@ -130,13 +134,82 @@ TEST_CASE("face_model: correlation brings unmeasured segments closer to the trut
         }
         REQUIRE(unmeasured.size() > 100);
         scored = unmeasured.size();
-        with += meanVertexError(a.face, truth, unmeasured) / t.test.rows();
-        without += meanVertexError(b.face, truth, unmeasured) / t.test.rows();
+        joint += meanVertexError(a.face, truth, unmeasured) / t.test.rows();
+        thesis += meanVertexError(b.face, truth, unmeasured) / t.test.rows();
+        without += meanVertexError(c.face, truth, unmeasured) / t.test.rows();
         meanError += meanVertexError(t.model.meanFace, truth, unmeasured) / t.test.rows();
     }
-    INFO(measured.size() << " vertices measured, " << scored << " scored: correlation on " << with << " mm, off "
-                         << without << " mm, mean face " << meanError << " mm");
-    CHECK(with < 0.75 * without);
+    INFO(measured.size() << " vertices measured, " << scored << " scored: correlation joint " << joint << " mm, thesis "
+                         << thesis << " mm, off " << without << " mm, mean face " << meanError << " mm");
+    CHECK(joint < 0.75 * without);
+    CHECK(thesis < 0.75 * without);
+}
+
+TEST_CASE("face_model: the joint model is the correlation mixture composed with the segment decoders")
+{
+    const Trained& t = trained();
+    const FaceModel& m = t.model;
+    REQUIRE(m.joint.size() == m.correlation.size());
+    Random random(7);
+    for (Eigen::Index k = 0; k < m.joint.size(); ++k) {
+        const Ppca& c = m.correlation.components[static_cast<size_t>(k)];
+        const Ppca& j = m.joint.components[static_cast<size_t>(k)];
+        REQUIRE(j.dim() == m.meanFace.size());
+        REQUIRE(j.latentDim() == c.latentDim());
+        // Independently: a latent u gives the segment latents m + A u, each segment decoded by
+        // eq. 4.20 (fromLatent) and the segments blended.
+        const Eigen::VectorXd u = random.normalMatrix(c.latentDim(), 1);
+        const Eigen::VectorXd latents = c.mean + c.W * u;
+        std::vector<Eigen::VectorXd> parts;
+        double noise = 0.0, coordinates = 0.0;
+        Eigen::Index offset = 0;
+        for (const SegmentModel& sm : m.segments) {
+            const Ppca& p = sm.cleanUp;
+            parts.push_back(fromLatent(p, latents.segment(offset, p.latentDim()).transpose()).transpose());
+            // The covariance sigma_s^2 I + tau^2 D_s D_s^T with D_s the decoder x -> fromLatent(x) - mu,
+            // here taken column by column from fromLatent, averaged over its diagonal.
+            Eigen::MatrixXd D(p.dim(), p.latentDim());
+            for (Eigen::Index i = 0; i < p.latentDim(); ++i)
+                D.col(i) = fromLatent(p, Eigen::RowVectorXd::Unit(p.latentDim(), i)).transpose() - p.mean;
+            const Eigen::MatrixXd cov = p.sigma2 * Eigen::MatrixXd::Identity(p.dim(), p.dim()) + c.sigma2 * D * D.transpose();
+            noise += cov.trace();
+            coordinates += static_cast<double>(p.dim());
+            offset += p.latentDim();
+        }
+        const Eigen::VectorXd expected = blendSegments(m.segmentation, parts);
+        const Eigen::VectorXd got = j.mean + j.W * u;
+        CHECK((got - expected).norm() <= 1e-9 * expected.norm());
+        CHECK(std::abs(j.sigma2 - noise / coordinates) <= 1e-12 * j.sigma2);
+    }
+}
+
+TEST_CASE("face_model: with joint correlation one region informs every segment")
+{
+    // Measure only the nose tip's segment core; under the thesis' route the other measured
+    // segments (those holding a few border vertices) are inferred from those few vertices
+    // alone, under the joint route from all of them.
+    const Trained& t = trained();
+    const Segmentation& seg = t.model.segmentation;
+    const int nose = seg.core(kNoseTip);
+    double joint = 0.0, thesis = 0.0, meanError = 0.0;
+    for (Eigen::Index f = 0; f < t.test.rows(); ++f) {
+        const Eigen::VectorXd truth = t.test.row(f).transpose();
+        Observations obs;
+        for (int v = 0; v < kSide * kSide; ++v)
+            if (seg.core(v) == nose)
+                obs.addVertex(v, truth.segment<3>(3 * v));
+        ReconstructOptions onThesis;
+        onThesis.correlation = Correlation::Thesis;
+        joint += meanVertexError(reconstruct(t.model, obs).face, truth) / t.test.rows();
+        thesis += meanVertexError(reconstruct(t.model, obs, onThesis).face, truth) / t.test.rows();
+        meanError += meanVertexError(t.model.meanFace, truth) / t.test.rows();
+    }
+    INFO("whole face from the nose segment: joint " << joint << " mm, thesis " << thesis << " mm, mean face "
+                                                    << meanError << " mm");
+    CHECK(joint < thesis);
+    CHECK(joint < 0.5 * meanError);
+    CHECK(parseCorrelation("thesis") == Correlation::Thesis);
+    REQUIRE_THROWS_WITH(parseCorrelation("both"), Catch::Contains("'both'"));
 }
 
 TEST_CASE("face_model: measured vertices are kept without clean-up, and bad input is rejected")
