@@ -9,33 +9,39 @@
 #include "contours/curvature_gpu.h"
 #include "core/stopwatch.h"
 #include "geometry/mesh_batch.h"
-#include "geometry/primitives.h"
+#include "dataset/face_model.h"
+#include "dataset/face_params.h"
+#include "evaluation/contour_eval.h"
+#include "geometry/camera.h"
+#include "model/head_model.h"
 
-#include <cmath>
-#include <random>
 
 namespace facesketch::app {
 
 namespace {
 
-// `meshes` distinct face-sized bumpy patches (150 x 150 mm, a dome with ripples) of about
-// `vertices` vertices: the cost per vertex of the kernels does not depend on what the surface
-// looks like, only on the topology's valence, which a grid shares with a face mesh.
-std::vector<Mesh> facePatches(int meshes, int vertices)
+// The faces a user's cloud is built from: `meshes` synthetic identities (facesketch synth,
+// seed 1) at the resolution nearest `vertices` (low ~900, high ~6,000, ultra ~25,000), skin
+// only, with the dataset's labelled and excluded vertices, as `eval contours` uses them.
+struct BenchFaces {
+    std::vector<Mesh> meshes;
+    std::vector<std::uint32_t> flags;
+};
+
+BenchFaces syntheticFaces(int meshes, int vertices)
 {
-    const int side = std::max(3, static_cast<int>(std::lround(std::sqrt(double(vertices)))));
-    const Mesh grid = makeGrid(side, side, 150.0, 150.0);
-    std::mt19937_64 rng(42);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
-    std::vector<Mesh> out;
-    for (int m = 0; m < meshes; ++m) {
-        Mesh face = grid;
-        const double a = u(rng), b = u(rng), c = u(rng);
-        for (Eigen::Index v = 0; v < face.V.rows(); ++v) {
-            const double x = face.V(v, 0), y = face.V(v, 1);
-            face.V(v, 2) = 60 * std::exp(-(x * x + y * y) / (2 * 60.0 * 60.0)) + 6 * a * std::sin(0.08 * x + b) * std::cos(0.06 * y + c);
-        }
-        out.push_back(face);
+    const dataset::Resolution resolution = vertices < 2500    ? dataset::Resolution::Low
+                                           : vertices < 12000 ? dataset::Resolution::High
+                                                              : dataset::Resolution::Ultra;
+    const dataset::FaceTopology topology = dataset::buildFaceTopology(resolution);
+    const dataset::Manifest& m = topology.labels;
+    const dataset::Component& skin = *m.component("skin");
+    const Triangles F = model::skinTriangles(m);
+    BenchFaces out;
+    out.flags = evaluation::skinContourFlags(m);
+    for (int i = 0; i < meshes; ++i) {
+        const Vertices V = dataset::synthesizeFace(topology, dataset::sampleFaceParams(1, i));
+        out.meshes.push_back(Mesh{V.middleRows(skin.begin, skin.size()), F});
     }
     return out;
 }
@@ -44,7 +50,8 @@ std::vector<Mesh> facePatches(int meshes, int vertices)
 
 void benchContours(const BenchOptions& options, std::ostream& out)
 {
-    const std::vector<Mesh> meshes = facePatches(options.meshes, options.vertices);
+    const BenchFaces faces = syntheticFaces(options.meshes, options.vertices);
+    const std::vector<Mesh>& meshes = faces.meshes;
     const Eigen::Index nv = meshes[0].V.rows();
     const std::string tag = std::to_string(nv) + "v";
     gpu::ScopedDevice deviceOwner;
@@ -55,7 +62,8 @@ void benchContours(const BenchOptions& options, std::ostream& out)
     ContourParams params;
     params.silhouetteThreshold = defaultSilhouetteThreshold(nv);
     params.featureSize = meanEdgeLength(meshes[0]);
-    const Camera camera = frameMesh(meshes[0], {30, 10}, 1920, 1080, Projection::Perspective);
+    // A three-quarter view (the thesis' sketching view) of the whole face at 1920 x 1080.
+    const Camera camera = frameMesh(meshes[0], parseView("34"), 1920, 1080, Projection::Perspective);
     ContourParams stroke = params; // a stroke's bounding box (200 x 150 px) plus margin
     stroke.rect[0] = 860;
     stroke.rect[1] = 400;
@@ -73,7 +81,7 @@ void benchContours(const BenchOptions& options, std::ostream& out)
             ms.push_back(curvature.run());
         out << "curvature_gpu_" << tag << "_ms " << median(ms) << " ms\n";
 
-        GpuCandidates cloud(device, curvature, {});
+        GpuCandidates cloud(device, curvature, faces.flags);
         size_t count = 0, strokeCount = 0;
         std::vector<double> full, culled, fullWall;
         for (int r = 0; r < options.repeat + 1; ++r) {
@@ -105,7 +113,7 @@ void benchContours(const BenchOptions& options, std::ostream& out)
     out << "curvature_cpu_1thread_" << tag << "_ms " << cpuCurvature.milliseconds() * scale << " ms\n";
     const std::vector<Mesh> subset(meshes.begin(), meshes.begin() + cpuMeshes);
     Stopwatch cpuCandidates;
-    contourCandidates(subset, curv, {}, camera, params);
+    contourCandidates(subset, curv, faces.flags, camera, params);
     out << "candidates_cpu_1thread_" << tag << "_ms " << cpuCandidates.milliseconds() * scale << " ms\n";
 }
 

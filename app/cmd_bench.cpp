@@ -13,7 +13,7 @@ const std::vector<Benchmark>& benchmarks()
     static const std::vector<Benchmark> all = {
         {"normals", "area-weighted vertex normals of a batch of meshes: GPU kernel vs single-threaded CPU", benchNormals},
         {"render", "offscreen render of a lit mesh to an image, with readback", benchRender},
-        {"contours", "curvature pass and per-view candidate cloud for a batch of meshes: GPU vs single-threaded CPU", benchContours},
+        {"contours", "curvature pass and per-view candidate cloud of 230 synthetic faces (--vertices picks low, high or ultra): GPU vs single-threaded CPU", benchContours},
         {"synth", "250 synthetic identities at each resolution, 250 ICT identities, 10 identities with their 36 poses", benchSynth},
         {"stats", "statistics core at 6,000 vertices: conditional inference, reconstruction, one mixture fit", benchStatsCore},
         {"train", "face model on the synthetic low, high and ultra sets: training time, file size, reconstruction latency", benchTrain},

@@ -47,15 +47,26 @@
 #define DRAW_MODE_UNLIT 1   // vertex colour as is
 #define DRAW_MODE_POINTS 2  // unlit round points
 
-// contours.comp: per-view contour tests and the candidate cloud (thesis 4.3, 4.4).
+// The per-view contour tests and the candidate cloud (thesis 4.3, 4.4) in two passes, so that
+// lavapipe, which runs a branch for all lanes of a SIMD row when any lane takes it, does the
+// neighbour work only where a vertex passed the cheap tests and reads one float per neighbour
+// instead of recomputing its radial curvature:
+// contours_radial.comp: per (mesh, vertex), the radial curvature (for the neighbours' tests) and
+// the vertex's own tests: silhouette, labelled, and the suggestive pre-test (front-facing and
+// D_w k_r over threshold), culled to the rectangle and sphere.
 #define CONTOURS_BINDING_POSITIONS 0
 #define CONTOURS_BINDING_SHAPE 1      // DCURV_BINDING_SHAPE
 #define CONTOURS_BINDING_SHAPE_C23 2  // DCURV_BINDING_SHAPE_C23
-#define CONTOURS_BINDING_WEDGE_OFFSETS 3
-#define CONTOURS_BINDING_WEDGES 4
-#define CONTOURS_BINDING_FLAGS 5      // uint per vertex: VERTEX_LABELLED | VERTEX_EXCLUDED
-#define CONTOURS_BINDING_VIEW 6       // ContourViewGpu (engine/contours/candidates_gpu.cpp)
-#define CONTOURS_BINDING_OUTPUT 7     // uint count, 3 pad, then candidates: uvec4(mesh, vertex, types, 0), vec4(world, depth), vec4(screen, 0, 0)
+#define CONTOURS_BINDING_FLAGS 3      // uint per vertex: VERTEX_LABELLED | VERTEX_EXCLUDED
+#define CONTOURS_BINDING_VIEW 4       // ContourViewGpu (engine/contours/candidates_gpu.cpp)
+#define CONTOURS_BINDING_RADIAL 5     // out: float, batch layout: k_r, or CONTOURS_NO_RADIAL without a tangent plane
+#define CONTOURS_BINDING_STATE 6      // out: uint, batch layout: CONTOUR_* bits found, CONTOURS_TEST_SUGGESTIVE
+// contours.comp: the suggestive zero-crossing test against the one-ring and the atomic append.
+#define CONTOURS_BINDING_NEIGHBOUR_OFFSETS 7 // uint[vertexCount + 1]
+#define CONTOURS_BINDING_NEIGHBOURS 8        // uint[]: one-rings, geometry/wedges.h buildNeighbours
+#define CONTOURS_BINDING_OUTPUT 9     // uint count, 3 pad, then candidates: uvec4(mesh, vertex, types, 0), vec4(world, depth), vec4(screen, 0, 0)
+#define CONTOURS_TEST_SUGGESTIVE 8u   // state bit: passed the suggestive pre-test, check the one-ring
+#define CONTOURS_NO_RADIAL 3.0e38     // radial value of a vertex without a tangent plane
 #define CONTOUR_SILHOUETTE 1u
 #define CONTOUR_SUGGESTIVE 2u
 #define CONTOUR_LABELLED 4u

@@ -2,7 +2,9 @@
 
 #include "core/error.h"
 #include "geometry/mesh_batch.h"
+#include "geometry/wedges.h"
 #include "shaders/contours_comp.h"
+#include "shaders/contours_radial_comp.h"
 #include "shaders/shared.h"
 
 #include <algorithm>
@@ -13,7 +15,7 @@ namespace facesketch {
 
 namespace {
 
-// Mirrors the View block of shaders/contours.comp.glsl (std140: vec4s and a mat4 only, so the same as std430).
+// Mirrors the View block of shaders/contours_view.glsl (std140: vec4s and a mat4 only, so the same as std430).
 struct ContourViewGpu {
     glm::mat4 viewProjection;
     glm::vec4 eye;
@@ -47,8 +49,17 @@ GpuCandidates::GpuCandidates(gpu::Device& device, GpuCurvature& curvature, const
     const auto nv = static_cast<size_t>(curvature.vertexCount());
     if (!flags.empty() && flags.size() != nv)
         fail("GpuCandidates: ", flags.size(), " vertex flags for ", nv, " vertices");
-    program_ = gpu::createComputeProgram(device_, gpu::shaderCode(contours_comp), 8, 0, 1u << CONTOURS_BINDING_VIEW);
+    radialProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(contours_radial_comp), kBindings, 0,
+                                               1u << CONTOURS_BINDING_VIEW);
+    program_ = gpu::createComputeProgram(device_, gpu::shaderCode(contours_comp), kBindings, 0, 1u << CONTOURS_BINDING_VIEW);
     flags_ = gpu::createBuffer(device_, nv * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    const Neighbours rings = buildNeighbours(curvature.hostWedges());
+    neighbourOffsets_ = gpu::createBuffer(device_, rings.offsets.size() * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    gpu::uploadBuffer(device_, neighbourOffsets_, rings.offsets.data(), neighbourOffsets_.size);
+    // A vertex without neighbours (isolated) still needs a non-empty buffer.
+    std::vector<std::uint32_t> ringVertices = rings.vertices.empty() ? std::vector<std::uint32_t>{0} : rings.vertices;
+    neighbours_ = gpu::createBuffer(device_, ringVertices.size() * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    gpu::uploadBuffer(device_, neighbours_, ringVertices.data(), neighbours_.size);
     std::vector<std::uint32_t> f = flags.empty() ? std::vector<std::uint32_t>(nv, 0) : flags;
     gpu::uploadBuffer(device_, flags_, f.data(), flags_.size);
     view_ = gpu::createBuffer(device_, sizeof(ContourViewGpu), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
@@ -61,9 +72,16 @@ GpuCandidates::~GpuCandidates()
     gpu::destroyGpuTimer(device_, timer_);
     if (output_.buffer)
         gpu::destroyBuffer(device_, output_);
+    if (radial_.buffer) {
+        gpu::destroyBuffer(device_, radial_);
+        gpu::destroyBuffer(device_, state_);
+    }
+    gpu::destroyBuffer(device_, neighbours_);
+    gpu::destroyBuffer(device_, neighbourOffsets_);
     gpu::destroyBuffer(device_, view_);
     gpu::destroyBuffer(device_, flags_);
     gpu::destroyComputeProgram(device_, program_);
+    gpu::destroyComputeProgram(device_, radialProgram_);
 }
 
 std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourParams& p, double* timing)
@@ -72,6 +90,16 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
     const auto vertexCount = static_cast<std::uint32_t>(curvature_.vertexCount());
     if (meshCount == 0)
         fail("GpuCandidates::build: the curvature holds no meshes");
+    const VkDeviceSize perVertex = VkDeviceSize(meshCount) * vertexCount * sizeof(std::uint32_t);
+    if (radial_.size != perVertex) { // first build, or the curvature now holds another batch
+        vkDeviceWaitIdle(device_.device);
+        if (radial_.buffer) {
+            gpu::destroyBuffer(device_, radial_);
+            gpu::destroyBuffer(device_, state_);
+        }
+        radial_ = gpu::createBuffer(device_, perVertex, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        state_ = gpu::createBuffer(device_, perVertex, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    }
     if (capacity_ == 0) {
         // A view's cloud is typically a few percent of all vertices; grown on demand below.
         capacity_ = std::max<std::uint32_t>(1024, meshCount * vertexCount / 16);
@@ -97,10 +125,12 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
             gpu::timerStart(cmd, timer_);
             vkCmdFillBuffer(cmd, output_.buffer, 0, outputHeader, 0);
             gpu::transferToComputeBarrier(cmd);
-            gpu::dispatchRaw(device_, cmd, program_, meshCount, rows, 1,
-                             {&curvature_.positions(), &curvature_.shapes(), &curvature_.shapesC23(), &curvature_.wedgeOffsets(),
-                              &curvature_.wedges(), &flags_, &view_, &output_},
-                             nullptr, 0);
+            const std::initializer_list<const gpu::Buffer*> buffers = {
+                &curvature_.positions(), &curvature_.shapes(), &curvature_.shapesC23(), &flags_, &view_,
+                &radial_, &state_, &neighbourOffsets_, &neighbours_, &output_};
+            gpu::dispatchRaw(device_, cmd, radialProgram_, meshCount, rows, 1, buffers, nullptr, 0);
+            gpu::computeBarrier(cmd);
+            gpu::dispatchRaw(device_, cmd, program_, meshCount, rows, 1, buffers, nullptr, 0);
             gpu::hostReadBarrier(cmd);
             gpu::timerEnd(cmd, timer_);
         });

@@ -2,7 +2,8 @@
 // The candidate cloud on the GPU (thesis 4.4): the per-view contour tests of
 // contours/candidates.h for every face whose curvature a GpuCurvature holds, appended to one
 // compact list with an atomic counter, then sorted by (mesh, vertex) on the host so that the
-// result does not depend on GPU scheduling.
+// result does not depend on GPU scheduling. Two dispatches (shaders/shared.h explains why):
+// radial curvature and the per-vertex tests, then the one-ring zero-crossing test and append.
 //
 //   GpuCandidates cloud(device, curvature, flags);           // once per dataset
 //   std::vector<Candidate> c = cloud.build(camera, params);  // per view change or stroke
@@ -28,8 +29,11 @@ public:
 private:
     gpu::Device& device_;
     GpuCurvature& curvature_;
-    gpu::ComputeProgram program_;
-    gpu::Buffer flags_, view_, output_;
+    static constexpr std::uint32_t kBindings = 10; // shaders/shared.h CONTOURS_BINDING_*
+    gpu::ComputeProgram radialProgram_, program_;
+    gpu::Buffer flags_, view_, neighbourOffsets_, neighbours_;
+    gpu::Buffer radial_, state_; // per (mesh, vertex), between the two passes
+    gpu::Buffer output_;
     std::uint32_t capacity_ = 0;
     gpu::GpuTimer timer_;
 };

@@ -74,6 +74,7 @@ GpuCurvature::GpuCurvature(gpu::Device& device, const Triangles& F, Eigen::Index
     curvatureProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(curvature_comp), 6, sizeof(BatchConstants));
     derivativeProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(curvature_derivative_comp), 9, sizeof(BatchConstants));
     uploadWedges(device_, F, vertexCount, wedgeOffsets_, wedges_);
+    hostWedges_ = buildWedges(F, vertexCount);
     timer_ = gpu::createGpuTimer(device_);
 }
 

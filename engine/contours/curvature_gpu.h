@@ -11,6 +11,7 @@
 //   GpuCurvature::Result r = curvature.download();
 
 #include "core/mesh.h"
+#include "geometry/wedges.h"
 #include "gpu/buffers.h"
 #include "gpu/compute.h"
 #include "gpu/timer.h"
@@ -62,6 +63,8 @@ public:
     const gpu::Buffer& shapes() const { return shapes_; }
     const gpu::Buffer& shapesC23() const { return shapesC23_; }
     const gpu::Buffer& wedgeOffsets() const { return wedgeOffsets_; }
+    /// The wedges on the host (geometry/wedges.h), for kernels that need other views of the topology.
+    const Wedges& hostWedges() const { return hostWedges_; }
     const gpu::Buffer& wedges() const { return wedges_; }
 
 private:
@@ -71,6 +74,7 @@ private:
     Eigen::Index vertexCount_;
     std::uint32_t meshCount_ = 0;
     gpu::ComputeProgram normalsProgram_, curvatureProgram_, derivativeProgram_;
+    Wedges hostWedges_;
     gpu::Buffer wedgeOffsets_, wedges_;
     gpu::Buffer positions_, normals_, curvature_, directions_, derivatives_, shapes_, shapesC23_;
     gpu::GpuTimer timer_;

@@ -1,5 +1,7 @@
 #include "geometry/wedges.h"
 
+#include <algorithm>
+
 namespace facesketch {
 
 Wedges buildWedges(const Triangles& F, Eigen::Index vertexCount)
@@ -20,6 +22,23 @@ Wedges buildWedges(const Triangles& F, Eigen::Index vertexCount)
             w.corners[fill[v]++] = {static_cast<std::uint32_t>(F(t, (c + 1) % 3)), static_cast<std::uint32_t>(F(t, (c + 2) % 3))};
         }
     return w;
+}
+
+Neighbours buildNeighbours(const Wedges& wedges)
+{
+    Neighbours n;
+    n.offsets.push_back(0);
+    std::vector<std::uint32_t> ring;
+    for (size_t v = 0; v + 1 < wedges.offsets.size(); ++v) {
+        ring.clear();
+        for (std::uint32_t w = wedges.offsets[v]; w < wedges.offsets[v + 1]; ++w)
+            ring.insert(ring.end(), wedges.corners[w].begin(), wedges.corners[w].end());
+        std::sort(ring.begin(), ring.end());
+        ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+        n.vertices.insert(n.vertices.end(), ring.begin(), ring.end());
+        n.offsets.push_back(static_cast<std::uint32_t>(n.vertices.size()));
+    }
+    return n;
 }
 
 } // namespace facesketch

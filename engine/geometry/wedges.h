@@ -21,4 +21,14 @@ struct Wedges {
 /// Within a vertex, wedges keep the order of their triangles in F.
 Wedges buildWedges(const Triangles& F, Eigen::Index vertexCount);
 
+/// The one-ring of every vertex in compressed-row form: for vertex v, vertices
+/// [offsets[v], offsets[v+1]) are the distinct vertices sharing an edge with it, ascending.
+struct Neighbours {
+    std::vector<std::uint32_t> offsets;  ///< #V + 1
+    std::vector<std::uint32_t> vertices; ///< grouped by vertex
+};
+
+/// The one-rings of the wedges' vertices (each neighbour once, though most appear in two wedges).
+Neighbours buildNeighbours(const Wedges& wedges);
+
 } // namespace facesketch

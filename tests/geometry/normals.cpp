@@ -3,6 +3,7 @@
 #include "geometry/wedges.h"
 
 #include <catch2/catch.hpp>
+#include <set>
 
 using namespace facesketch;
 
@@ -81,4 +82,27 @@ TEST_CASE("wedges: every triangle corner appears once, in winding order")
                     found |= s.F(t, r) == v && s.F(t, (r + 1) % 3) == Eigen::Index(b) && s.F(t, (r + 2) % 3) == Eigen::Index(c);
             REQUIRE(found);
         }
+}
+
+TEST_CASE("wedges: one-rings hold each edge neighbour once, ascending, on both ends of every edge")
+{
+    const Mesh s = makeGrid(4, 3, 3.0, 2.0); // boundary vertices have open rings
+    const Neighbours n = buildNeighbours(buildWedges(s.F, s.V.rows()));
+    REQUIRE(n.offsets.size() == static_cast<size_t>(s.V.rows()) + 1);
+    std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
+    for (Eigen::Index t = 0; t < s.F.rows(); ++t)
+        for (int r = 0; r < 3; ++r) {
+            const auto a = static_cast<std::uint32_t>(s.F(t, r)), b = static_cast<std::uint32_t>(s.F(t, (r + 1) % 3));
+            edges.insert({a, b});
+            edges.insert({b, a});
+        }
+    std::set<std::pair<std::uint32_t, std::uint32_t>> listed;
+    for (std::uint32_t v = 0; v + 1 < n.offsets.size(); ++v)
+        for (std::uint32_t k = n.offsets[v]; k < n.offsets[v + 1]; ++k) {
+            if (k > n.offsets[v])
+                REQUIRE(n.vertices[k - 1] < n.vertices[k]);
+            listed.insert({v, n.vertices[k]});
+        }
+    REQUIRE(listed == edges);
+    REQUIRE(n.vertices.size() == edges.size());
 }
