@@ -39,9 +39,11 @@
 // 60..67 inner lips) where one exists, else by geometric rules on the neutral:
 //   ex/en = 36, 39, 42, 45; ch = 48, 54; ls = 51; li = 57; sto = 62; sn = 33; sbal = 31, 35;
 //   cph = 50, 52; n = 27; cs1 = 29; gn = 8; obs = 0, 16 (top of the jaw line, by the ear);
-//   prn = the skin vertex within 1 cm of point 30 whose largest distance to the most forward
-//   skin vertex of each of 64 identities (seed 0) is smallest (the tip moves between people;
-//   forward is the face's own, (ex_l - ex_r) x (n - gn), as heads are pitched differently);
+//   prn = the skin vertex within 1 cm of point 30 that lies within 3 mm of the most forward
+//   skin vertex for the most of 64 identities (seed 0), ties to the smaller mean distance (the
+//   tip moves between people across vertices about 3 mm apart, so no fixed vertex is within
+//   3 mm for every identity: one of the test's 10 faces is at 3.04 mm; forward is the face's
+//   own, (ex_l - ex_r) x (n - gn), as heads are pitched differently);
 //   g = the most forward midline vertex between n and 1 cm above the brows' inner ends;
 //   s = the deepest (least z) midline vertex between cs1 and g;
 //   pg = the most forward midline vertex between gn and 5 mm below li; sl = the deepest
