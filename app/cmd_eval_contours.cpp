@@ -162,7 +162,9 @@ void runEvalContours(const EvalContoursCommand& c)
         if (n > train.rows())
             break;
         Stopwatch trainClock;
-        const stats::FaceModel subset = stats::trainFaceModel(train.topRows(n), F, prn);
+        stats::FaceModelOptions small; // the defaults, with no more cross-validation folds than faces
+        small.folds = std::min(small.folds, n);
+        const stats::FaceModel subset = stats::trainFaceModel(train.topRows(n), F, prn, small);
         evaluation::ContourEvalData d = data;
         d.model = &subset;
         const std::vector<evaluation::ContourEvalResult> r = evaluation::evaluateContours(*device, d, options);
@@ -174,7 +176,7 @@ void runEvalContours(const EvalContoursCommand& c)
         const double faces = static_cast<double>(r.size()) / 3.0;
         std::cout << "training_faces " << n << "  known-vertex " << sums[0] / faces << " mm  nearest-candidate " << sums[1] / faces
                   << " mm  2d " << sums[2] / faces << " mm  mean-face " << meanFace / r.size() << " mm  (" << trainClock.seconds()
-                  << " s)\n";
+                  << " s)" << std::endl;
     }
 }
 
