@@ -5,6 +5,7 @@
 #include "dataset/face_model.h"
 
 #include "core/error.h"
+#include "core/names.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,10 +24,7 @@ const char* resolutionName(Resolution r)
 
 Resolution parseResolution(const std::string& text)
 {
-    for (Resolution r : {Resolution::Low, Resolution::High, Resolution::Ultra})
-        if (text == resolutionName(r))
-            return r;
-    fail("resolution '", text, "' is not one of low, high, ultra");
+    return parseName(text, std::array{Resolution::Low, Resolution::High, Resolution::Ultra}, resolutionName, "resolution");
 }
 
 int FaceTopology::lowerCopy(int row, int col) const

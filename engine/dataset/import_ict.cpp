@@ -9,6 +9,7 @@
 #include "dataset/import_ict.h"
 
 #include "core/error.h"
+#include "core/names.h"
 #include "dataset/dataset.h"
 #include "dataset/simplify.h"
 #include "dataset/synth.h"
@@ -604,10 +605,7 @@ const char* ictRegionName(IctRegion region)
 
 IctRegion parseIctRegion(const std::string& text)
 {
-    for (IctRegion r : {IctRegion::NarrowFace, IctRegion::Face, IctRegion::HeadNeck})
-        if (text == ictRegionName(r))
-            return r;
-    fail("region '", text, "' is not one of narrow, face, head");
+    return parseName(text, std::array{IctRegion::NarrowFace, IctRegion::Face, IctRegion::HeadNeck}, ictRegionName, "region");
 }
 
 IctPoseRecipes readIctPoseRecipes(const fs::path& path)

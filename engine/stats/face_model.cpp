@@ -1,6 +1,7 @@
 #include "stats/face_model.h"
 
 #include "core/error.h"
+#include "core/names.h"
 #include "stats/check.h"
 
 #include <Eigen/QR>
@@ -168,10 +169,7 @@ const char* correlationName(Correlation correlation)
 
 Correlation parseCorrelation(const std::string& text)
 {
-    for (Correlation c : {Correlation::Off, Correlation::Thesis, Correlation::Joint})
-        if (text == correlationName(c))
-            return c;
-    fail("correlation '", text, "' is not one of off, thesis, joint");
+    return parseName(text, std::array{Correlation::Off, Correlation::Thesis, Correlation::Joint}, correlationName, "correlation");
 }
 
 std::string describe(const FaceModel& model)
