@@ -30,9 +30,10 @@ void uploadWedges(gpu::Device& device, const Triangles& F, Eigen::Index vertexCo
 
 /// The y extent (vertex rows) to dispatch a batch kernel with, meshes along x: the shaders stride
 /// over vertices, so fewer rows mean more vertices per invocation. Aims at `targetInvocations`
-/// in flight: plenty to fill a GPU, while a CPU implementation pays its per-workgroup cost
-/// (lavapipe: about 3.5 us a group, measured in BENCHMARKS.md) a few hundred times, not tens
-/// of thousands. At most vertexCount and at least one workgroup row.
+/// in flight: plenty to fill a GPU; a CPU implementation pays a per-workgroup cost, but on
+/// lavapipe 16K to 256K invocations instead of one per vertex gained only about 10% on the
+/// contour kernel, within the noise (BENCHMARKS.md, contour engine), so callers keep the
+/// default. At most vertexCount and at least one workgroup row.
 std::uint32_t batchRows(std::uint32_t vertexCount, std::uint32_t meshCount, std::uint32_t groupMeshes, std::uint32_t groupVertices,
                         std::uint32_t targetInvocations = 1u << 30);
 
