@@ -77,7 +77,8 @@ void addTrainCommand(CLI::App& root)
         "PPCA per segment (components chosen by cross-validated likelihood among --components), a clean-up\n"
         "PPCA per segment and a correlation mixture over all segment latents. Every other component (eyes,\n"
         "teeth, tongue) is stored on the mean head and follows its nearest skin vertices. Prints one line\n"
-        "per segment: vertices, components, latent dimension, clean-up dimension, log-likelihood per face.\n"
+        "per segment: vertices, components, latent dimension, clean-up dimension, log-likelihood per face;\n"
+        "then the correlation mixture and the joint whole-face model reconstruction uses (docs/face-model.md).\n"
         "Example: facesketch synth -o faces && facesketch train faces -o faces.model");
     cmd->add_option("dataset", c->dataset, "Dataset folder (facesketch synth or import)")->required();
     cmd->add_option("-o,--output", c->output, "Model file to write (replaced atomically)")->required();

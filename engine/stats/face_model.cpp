@@ -185,6 +185,8 @@ std::string describe(const FaceModel& model)
             << sm.logLikelihood << "\n";
     }
     out << "correlation: " << model.correlation.size() << " components over " << model.correlation.dim() << " latents\n";
+    out << "joint model: " << model.joint.size() << " components over " << model.joint.dim() << " coordinates, "
+        << (model.joint.size() > 0 ? model.joint.components.front().latentDim() : 0) << " latents\n";
     return out.str();
 }
 

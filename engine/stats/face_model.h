@@ -151,7 +151,8 @@ Mppca composeCorrelation(const FaceModel& model);
 void deriveFaceModel(FaceModel& model);
 
 /// A table of the trained model, one line per segment: vertices, mixture components, latent
-/// dimension, clean-up dimension and mean training log-likelihood per face (nats).
+/// dimension, clean-up dimension and mean training log-likelihood per face (nats); then one
+/// line each for the correlation mixture and the joint model.
 std::string describe(const FaceModel& model);
 
 /// The most probable face given the measurements (vertex indices are those of the model).

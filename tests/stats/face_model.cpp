@@ -70,9 +70,12 @@ TEST_CASE("face_model: 15% of the vertices give under half the mean-face error")
 {
     const Trained& t = trained();
     REQUIRE(t.model.segmentation.size() >= 3);
-    // The summary `facesketch train` prints: a header, one line per segment, the correlation.
+    // The summary `facesketch train` prints: a header, one line per segment, the correlation
+    // and the joint model.
     const std::string table = describe(t.model);
-    CHECK(std::count(table.begin(), table.end(), '\n') == t.model.segmentation.size() + 2);
+    CHECK(std::count(table.begin(), table.end(), '\n') == t.model.segmentation.size() + 3);
+    CHECK(table.find("joint model: 1 components over " + std::to_string(t.model.meanFace.size()) + " coordinates") !=
+          std::string::npos);
     Random random(42);
     double modelError = 0.0, meanError = 0.0;
     for (Eigen::Index f = 0; f < t.test.rows(); ++f) {
