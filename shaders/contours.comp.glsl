@@ -12,6 +12,7 @@ layout(binding = CONTOURS_BINDING_RADIAL, std430) restrict readonly buffer Radia
 layout(binding = CONTOURS_BINDING_STATE, std430) restrict readonly buffer State { uint state[]; };
 layout(binding = CONTOURS_BINDING_NEIGHBOUR_OFFSETS, std430) restrict readonly buffer NeighbourOffsets { uint neighbourOffsets[]; };
 layout(binding = CONTOURS_BINDING_NEIGHBOURS, std430) restrict readonly buffer Neighbours { uint neighbours[]; };
+layout(binding = CONTOURS_BINDING_VERTEX_LIST, std430) restrict readonly buffer VertexList { uint vertexList[]; };
 #include "contours_view.glsl"
 
 struct Candidate {
@@ -28,11 +29,12 @@ layout(binding = CONTOURS_BINDING_OUTPUT, std430) buffer Output {
 void main()
 {
     uint mesh = gl_GlobalInvocationID.x;
-    uint vertexCount = counts.x, meshCount = counts.y;
+    uint meshCount = counts.y;
     if (mesh >= meshCount)
         return;
     uint stride = gl_NumWorkGroups.y * gl_WorkGroupSize.y;
-    for (uint v = gl_GlobalInvocationID.y; v < vertexCount; v += stride) {
+    for (uint i = gl_GlobalInvocationID.y; i < counts.w; i += stride) {
+        uint v = vertexList[i];
         uint index = v * meshCount + mesh;
         uint bits = state[index];
         if (bits == 0u)

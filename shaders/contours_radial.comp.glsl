@@ -15,17 +15,19 @@ layout(binding = CONTOURS_BINDING_SHAPE_C23, std430) restrict readonly buffer Sh
 layout(binding = CONTOURS_BINDING_FLAGS, std430) restrict readonly buffer Flags { uint flags[]; };
 layout(binding = CONTOURS_BINDING_RADIAL, std430) restrict writeonly buffer Radial { float radialOut[]; };
 layout(binding = CONTOURS_BINDING_STATE, std430) restrict writeonly buffer State { uint state[]; };
+layout(binding = CONTOURS_BINDING_VERTEX_LIST, std430) restrict readonly buffer VertexList { uint vertexList[]; };
 #include "contours_view.glsl"
 #include "octahedral.glsl"
 
 void main()
 {
     uint mesh = gl_GlobalInvocationID.x;
-    uint vertexCount = counts.x, meshCount = counts.y;
+    uint meshCount = counts.y;
     if (mesh >= meshCount)
         return;
     uint stride = gl_NumWorkGroups.y * gl_WorkGroupSize.y;
-    for (uint v = gl_GlobalInvocationID.y; v < vertexCount; v += stride) {
+    for (uint i = gl_GlobalInvocationID.y; i < counts.w; i += stride) {
+        uint v = vertexList[i];
         uint index = v * meshCount + mesh;
         vec3 p = positions[index].xyz;
         uvec4 shape = shapes[index];

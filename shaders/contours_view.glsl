@@ -8,7 +8,7 @@ layout(binding = CONTOURS_BINDING_VIEW, std140) uniform View {
     vec4 sphere;     // centre, radius in mm
     vec4 thresholds; // silhouette, suggestive, featureSize^2, 0
     vec4 screen;     // width, height
-    uvec4 counts;    // vertexCount, meshCount, capacity, 0
+    uvec4 counts;    // vertexCount, meshCount, capacity, listed vertices
 };
 
 vec3 toCamera(vec3 p)

@@ -65,6 +65,8 @@
 #define CONTOURS_BINDING_NEIGHBOUR_OFFSETS 7 // uint[vertexCount + 1]
 #define CONTOURS_BINDING_NEIGHBOURS 8        // uint[]: one-rings, geometry/wedges.h buildNeighbours
 #define CONTOURS_BINDING_OUTPUT 9     // uint count, 3 pad, then candidates: uvec4(mesh, vertex, types, 0), vec4(world, depth), vec4(screen, 0, 0)
+#define CONTOURS_BINDING_VERTEX_LIST 10 // uint[counts.w]: the vertices both passes visit, ascending (the host culls
+                                        // those no mesh shows in the rectangle, keeping their one-rings)
 #define CONTOURS_TEST_SUGGESTIVE 8u   // state bit: passed the suggestive pre-test, check the one-ring
 #define CONTOURS_NO_RADIAL 3.0e38     // radial value of a vertex without a tangent plane
 #define CONTOUR_SILHOUETTE 1u

@@ -8,6 +8,7 @@
 #include "shaders/shared.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -41,6 +42,30 @@ float clampToFloat(double x)
     return static_cast<float>(std::clamp(x, -1e30, 1e30));
 }
 
+// Whether a sphere (centre, radius; world mm) can show any point inside the pixel rectangle:
+// the eight corners of its eye-space bounding box, projected, bound its image while all lie in
+// front of the camera; otherwise it is kept. Half a pixel of slack covers the kernel's float
+// arithmetic.
+bool sphereMayShow(const Camera& camera, const std::array<double, 4>& sphere, const double rect[4])
+{
+    const glm::dvec4 centre = camera.view * glm::dvec4(sphere[0], sphere[1], sphere[2], 1.0);
+    const double r = sphere[3];
+    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+    for (int k = 0; k < 8; ++k) {
+        const glm::dvec4 corner = centre + glm::dvec4(k & 1 ? r : -r, k & 2 ? r : -r, k & 4 ? r : -r, 0.0);
+        const glm::dvec4 clip = camera.projection * corner;
+        if (!(clip.w > 1e-9))
+            return true;
+        const double x = (clip.x / clip.w + 1.0) * 0.5 * camera.width, y = (1.0 - clip.y / clip.w) * 0.5 * camera.height;
+        x0 = std::min(x0, x);
+        x1 = std::max(x1, x);
+        y0 = std::min(y0, y);
+        y1 = std::max(y1, y);
+    }
+    constexpr double slack = 0.5;
+    return x1 >= rect[0] - slack && x0 <= rect[2] + slack && y1 >= rect[1] - slack && y0 <= rect[3] + slack;
+}
+
 } // namespace
 
 GpuCandidates::GpuCandidates(gpu::Device& device, GpuCurvature& curvature, const std::vector<std::uint32_t>& flags)
@@ -53,7 +78,9 @@ GpuCandidates::GpuCandidates(gpu::Device& device, GpuCurvature& curvature, const
                                                1u << CONTOURS_BINDING_VIEW);
     program_ = gpu::createComputeProgram(device_, gpu::shaderCode(contours_comp), kBindings, 0, 1u << CONTOURS_BINDING_VIEW);
     flags_ = gpu::createBuffer(device_, nv * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    const Neighbours rings = buildNeighbours(curvature.hostWedges());
+    rings_ = buildNeighbours(curvature.hostWedges());
+    const Neighbours& rings = rings_;
+    vertexList_ = gpu::createBuffer(device_, nv * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     neighbourOffsets_ = gpu::createBuffer(device_, rings.offsets.size() * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     gpu::uploadBuffer(device_, neighbourOffsets_, rings.offsets.data(), neighbourOffsets_.size);
     // A vertex without neighbours (isolated) still needs a non-empty buffer.
@@ -78,6 +105,7 @@ GpuCandidates::~GpuCandidates()
     }
     gpu::destroyBuffer(device_, neighbours_);
     gpu::destroyBuffer(device_, neighbourOffsets_);
+    gpu::destroyBuffer(device_, vertexList_);
     gpu::destroyBuffer(device_, view_);
     gpu::destroyBuffer(device_, flags_);
     gpu::destroyComputeProgram(device_, program_);
@@ -100,6 +128,37 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
         radial_ = gpu::createBuffer(device_, perVertex, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
         state_ = gpu::createBuffer(device_, perVertex, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     }
+    // The vertices some mesh may show inside the rectangle and the culling sphere, and their
+    // one-rings (whose radial curvature the zero-crossing test reads). A vertex left out lies
+    // outside in every mesh, so the kernels would have culled it anyway: the cloud is the same.
+    const std::vector<std::array<double, 4>>& bounds = curvature_.vertexBounds();
+    std::vector<char> shown(vertexCount, 0), listed(vertexCount, 0);
+    const bool everything = p.rect[0] <= -1e29 && p.rect[1] <= -1e29 && p.rect[2] >= 1e29 && p.rect[3] >= 1e29 &&
+                            p.sphere[3] >= 1e29;
+    for (std::uint32_t v = 0; v < vertexCount; ++v) {
+        const auto& b = bounds[v];
+        const double apart = std::sqrt(std::pow(b[0] - p.sphere[0], 2) + std::pow(b[1] - p.sphere[1], 2) +
+                                       std::pow(b[2] - p.sphere[2], 2));
+        shown[v] = everything || (apart - b[3] <= p.sphere[3] * (1 + 1e-6) + 1e-3 && sphereMayShow(camera, b, p.rect));
+    }
+    for (std::uint32_t v = 0; v < vertexCount; ++v)
+        if (shown[v]) {
+            listed[v] = 1;
+            for (std::uint32_t k = rings_.offsets[v]; k < rings_.offsets[v + 1]; ++k)
+                listed[rings_.vertices[k]] = 1;
+        }
+    std::vector<std::uint32_t> list;
+    for (std::uint32_t v = 0; v < vertexCount; ++v)
+        if (listed[v])
+            list.push_back(v);
+    if (list.empty()) {
+        if (timing)
+            *timing = 0;
+        return {};
+    }
+    gpu::uploadBuffer(device_, vertexList_, list.data(), list.size() * sizeof(std::uint32_t));
+    const auto listCount = static_cast<std::uint32_t>(list.size());
+
     if (capacity_ == 0) {
         // A view's cloud is typically a few percent of all vertices; grown on demand below.
         capacity_ = std::max<std::uint32_t>(1024, meshCount * vertexCount / 16);
@@ -119,15 +178,16 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
         view.counts[0] = vertexCount;
         view.counts[1] = meshCount;
         view.counts[2] = capacity_;
+        view.counts[3] = listCount;
         gpu::uploadBuffer(device_, view_, &view, sizeof(view));
-        const std::uint32_t rows = batchRows(vertexCount, meshCount, program_.localSize[0], program_.localSize[1]);
+        const std::uint32_t rows = batchRows(listCount, meshCount, program_.localSize[0], program_.localSize[1]);
         gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
             gpu::timerStart(cmd, timer_);
             vkCmdFillBuffer(cmd, output_.buffer, 0, outputHeader, 0);
             gpu::transferToComputeBarrier(cmd);
             const std::initializer_list<const gpu::Buffer*> buffers = {
                 &curvature_.positions(), &curvature_.shapes(), &curvature_.shapesC23(), &flags_, &view_,
-                &radial_, &state_, &neighbourOffsets_, &neighbours_, &output_};
+                &radial_, &state_, &neighbourOffsets_, &neighbours_, &output_, &vertexList_};
             gpu::dispatchRaw(device_, cmd, radialProgram_, meshCount, rows, 1, buffers, nullptr, 0);
             gpu::computeBarrier(cmd);
             gpu::dispatchRaw(device_, cmd, program_, meshCount, rows, 1, buffers, nullptr, 0);

@@ -4,12 +4,16 @@
 // compact list with an atomic counter, then sorted by (mesh, vertex) on the host so that the
 // result does not depend on GPU scheduling. Two dispatches (shaders/shared.h explains why):
 // radial curvature and the per-vertex tests, then the one-ring zero-crossing test and append.
+// Both visit only the vertices that some face may show inside the culling rectangle and sphere
+// (from per-vertex bounding spheres over the batch) and their one-rings: a stroke's box costs
+// a fraction of a whole view.
 //
 //   GpuCandidates cloud(device, curvature, flags);           // once per dataset
 //   std::vector<Candidate> c = cloud.build(camera, params);  // per view change or stroke
 
 #include "contours/candidates.h"
 #include "contours/curvature_gpu.h"
+#include "geometry/wedges.h"
 
 namespace facesketch {
 
@@ -29,9 +33,10 @@ public:
 private:
     gpu::Device& device_;
     GpuCurvature& curvature_;
-    static constexpr std::uint32_t kBindings = 10; // shaders/shared.h CONTOURS_BINDING_*
+    static constexpr std::uint32_t kBindings = 11; // shaders/shared.h CONTOURS_BINDING_*
     gpu::ComputeProgram radialProgram_, program_;
-    gpu::Buffer flags_, view_, neighbourOffsets_, neighbours_;
+    Neighbours rings_; // one-rings on the host, for listing the vertices a view needs
+    gpu::Buffer flags_, view_, neighbourOffsets_, neighbours_, vertexList_;
     gpu::Buffer radial_, state_; // per (mesh, vertex), between the two passes
     gpu::Buffer output_;
     std::uint32_t capacity_ = 0;

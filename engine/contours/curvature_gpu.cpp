@@ -115,6 +115,19 @@ void GpuCurvature::setPositions(const std::vector<float>& positions)
         shapesC23_ = gpu::createBuffer(device_, bytes / 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     }
     meshCount_ = meshCount;
+    const auto nv = static_cast<size_t>(vertexCount_);
+    vertexBounds_.assign(nv, {0, 0, 0, 0});
+    for (size_t m = 0; m < meshCount; ++m)
+        for (size_t v = 0; v < nv; ++v)
+            for (int c = 0; c < 3; ++c)
+                vertexBounds_[v][c] += positions[(m * nv + v) * 3 + c] / double(meshCount);
+    for (size_t m = 0; m < meshCount; ++m)
+        for (size_t v = 0; v < nv; ++v) {
+            double d2 = 0;
+            for (int c = 0; c < 3; ++c)
+                d2 += std::pow(positions[(m * nv + v) * 3 + c] - vertexBounds_[v][c], 2);
+            vertexBounds_[v][3] = std::max(vertexBounds_[v][3], std::sqrt(d2));
+        }
     const std::vector<float> batch = toBatchLayout(positions, meshCount_, static_cast<size_t>(vertexCount_));
     gpu::uploadBuffer(device_, positions_, batch.data(), bytes);
 }

@@ -16,6 +16,7 @@
 #include "gpu/compute.h"
 #include "gpu/timer.h"
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -65,6 +66,9 @@ public:
     const gpu::Buffer& wedgeOffsets() const { return wedgeOffsets_; }
     /// The wedges on the host (geometry/wedges.h), for kernels that need other views of the topology.
     const Wedges& hostWedges() const { return hostWedges_; }
+    /// Per vertex, a sphere holding that vertex in every mesh of the batch: centre xyz and
+    /// radius, mm (set by setPositions). Lets a view skip the vertices no mesh shows in it.
+    const std::vector<std::array<double, 4>>& vertexBounds() const { return vertexBounds_; }
     const gpu::Buffer& wedges() const { return wedges_; }
 
 private:
@@ -75,6 +79,7 @@ private:
     std::uint32_t meshCount_ = 0;
     gpu::ComputeProgram normalsProgram_, curvatureProgram_, derivativeProgram_;
     Wedges hostWedges_;
+    std::vector<std::array<double, 4>> vertexBounds_;
     gpu::Buffer wedgeOffsets_, wedges_;
     gpu::Buffer positions_, normals_, curvature_, directions_, derivatives_, shapes_, shapesC23_;
     gpu::GpuTimer timer_;

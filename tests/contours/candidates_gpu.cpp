@@ -4,6 +4,7 @@
 #include "geometry/primitives.h"
 #include "test_common.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <set>
@@ -161,5 +162,68 @@ TEST_CASE("candidates_gpu: a cloud larger than the first buffer grows it and sta
     REQUIRE(got.size() == again.size());
     for (size_t i = 1; i < got.size(); ++i)
         REQUIRE(got[i - 1] < got[i]); // sorted, no duplicates
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("candidates_gpu: a stroke's box gives exactly the whole view's candidates inside it")
+{
+    // The host lists only the vertices some torus may show in the box, and their one-rings, so
+    // the kernels visit a fraction of the batch; the candidates must not change. Tiny boxes
+    // around suggestive candidates check the one-rings: the neighbour a zero crossing is with
+    // lies outside such a box, and its radial curvature must be of this view, not the last.
+    const Batch batch = bumpyTori(1); // one torus: point-sized bounding spheres, tight lists
+    const Eigen::Index nv = batch.meshes[0].V.rows();
+    GpuCurvature curvature(test::device(), batch.meshes[0].F, nv);
+    curvature.setPositions(batch.positions);
+    curvature.run();
+    GpuCandidates gpu(test::device(), curvature, {});
+    ContourParams whole;
+    whole.silhouetteThreshold = defaultSilhouetteThreshold(nv);
+    whole.suggestiveThreshold = 0.005;
+    whole.featureSize = meanEdgeLength(batch.meshes[0]);
+    for (const Projection kind : {Projection::Perspective, Projection::Orthographic}) {
+        const Camera camera = frameMesh(batch.meshes[0], {20, 35}, 640, 480, kind);
+        const Camera other = frameMesh(batch.meshes[0], {200, -30}, 640, 480, kind);
+        const std::vector<Candidate> all = gpu.build(camera, whole);
+        auto inside = [](const Candidate& c, const ContourParams& box) {
+            return c.screen[0] >= box.rect[0] && c.screen[0] <= box.rect[2] && c.screen[1] >= box.rect[1] &&
+                   c.screen[1] <= box.rect[3];
+        };
+        auto check = [&](double x, double y, double halfWidth, double halfHeight) {
+            ContourParams box = whole;
+            box.rect[0] = x - halfWidth;
+            box.rect[1] = y - halfHeight;
+            box.rect[2] = x + halfWidth;
+            box.rect[3] = y + halfHeight;
+            std::vector<Candidate> expected;
+            for (const Candidate& c : all)
+                if (inside(c, box))
+                    expected.push_back(c);
+            gpu.build(other, whole); // leaves every vertex's radial curvature of another view
+            const std::vector<Candidate> got = gpu.build(camera, box);
+            INFO(all.size() << " candidates in the whole view, " << expected.size() << " in the box around (" << x << ", "
+                            << y << ")");
+            REQUIRE(got.size() == expected.size());
+            for (size_t i = 0; i < got.size(); ++i) {
+                REQUIRE(got[i].mesh == expected[i].mesh);
+                REQUIRE(got[i].vertex == expected[i].vertex);
+                REQUIRE(got[i].types == expected[i].types);
+                REQUIRE(got[i].screen[0] == expected[i].screen[0]);
+            }
+            return expected.size();
+        };
+        const auto first = std::find_if(all.begin(), all.end(), [](const Candidate& c) { return c.types & ContourSuggestive; });
+        REQUIRE(first != all.end());
+        const size_t inBox = check(first->screen[0], first->screen[1], 60, 45);
+        REQUIRE(inBox > 10);
+        REQUIRE(inBox * 5 < all.size());
+        int tiny = 0;
+        for (const Candidate& c : all)
+            if ((c.types & ContourSuggestive) && tiny < 40) {
+                REQUIRE(check(c.screen[0], c.screen[1], 0.6, 0.6) >= 1);
+                ++tiny;
+            }
+        REQUIRE(tiny >= 10);
+    }
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
