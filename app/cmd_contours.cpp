@@ -4,6 +4,7 @@
 #include "commands.h"
 
 #include "contours/candidates_gpu.h"
+#include "contours/curvature_cache.h"
 #include "contours/contour_lines.h"
 #include "contours/curvature_gpu.h"
 #include "core/error.h"
@@ -89,6 +90,9 @@ void addContoursCommand(CLI::App& root)
     cmd->add_option("--suggestive", o->suggestive, "Suggestive contour threshold on D_w k_r l^2")->capture_default_str();
     cmd->add_option("--silhouette", o->silhouette, "Silhouette threshold on |n.v| (default: 0.14 sqrt(863 / #V))");
     cmd->add_flag("--perspective", o->perspective, "Perspective instead of orthographic projection");
+    cmd->add_flag("--no-cache", o->noCache,
+                  "Compute the curvature of the faces even if the cache ($FACESKETCH_CACHE_DIR, else "
+                  "$XDG_CACHE_HOME/facesketch or ~/.cache/facesketch) holds it, and do not write it");
     cmd->callback([o] { writeContourPictures(*o); });
 }
 
@@ -116,12 +120,17 @@ void writeContourPictures(const ContourPictureOptions& options)
             std::vector<Candidate> cloud;
             {
                 GpuCurvature gpuCurvature(device, faces.shown.F, nv);
-                gpuCurvature.setPositions(meshMajorPositions(faces.meshes));
-                const double curvatureMs = gpuCurvature.run();
+                const std::vector<float> positions = meshMajorPositions(faces.meshes);
+                gpuCurvature.setPositions(positions);
+                const CachedCurvature pass =
+                    runCurvatureCached(gpuCurvature, faces.shown.F, positions, o->noCache ? std::filesystem::path() : defaultCacheFolder());
+                if (!pass.note.empty())
+                    std::cerr << "warning: " << pass.note << "\n";
                 GpuCandidates candidates(device, gpuCurvature, faces.flags);
                 double cloudMs = 0;
                 cloud = candidates.build(camera, params, &cloudMs);
-                std::cout << "curvature of " << faces.meshes.size() << " faces: " << curvatureMs << " ms on " << device.name << "; cloud of "
+                std::cout << "curvature of " << faces.meshes.size() << " faces: " << pass.milliseconds << " ms "
+                          << (pass.restored ? "to read " + pass.file.string() : "on " + std::string(device.name)) << "; cloud of "
                           << cloud.size() << " candidates: " << cloudMs << " ms\n";
             }
             Renderer r(device, o->size, o->size, 4);

@@ -33,6 +33,7 @@ struct ContourPictureOptions {
     double suggestive = ContourParams{}.suggestiveThreshold;
     double silhouette = -1;           ///< negative: the resolution-dependent default
     bool perspective = false;
+    bool noCache = false;             ///< compute the curvature even if a cache file holds it
 };
 /// Writes PREFIX-face.png, -sketch.png, -cloud.png and -density.png; prints a summary.
 void writeContourPictures(const ContourPictureOptions& options);

@@ -16,7 +16,10 @@ function(facesketch_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE facesketch_test_main ${ARG_DEPS})
+  # --warn NoTests: a ctest entry whose name matches no test case fails instead of passing
+  # with nothing run (a ';' in a test name once split two names and silently ran nothing).
   catch_discover_tests(${name}
+    EXTRA_ARGS --warn NoTests
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
     PROPERTIES ENVIRONMENT "FACESKETCH_VALIDATION=1;FACESKETCH_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
 endfunction()

@@ -140,6 +140,7 @@ double GpuCurvature::run()
     const NormalsConstants normalsConstants{vertices, meshCount_, NORMALS_WEIGHT_MAX};
     const BatchConstants constants{vertices, meshCount_};
     const std::uint32_t rows = batchRows(vertices, meshCount_, curvatureProgram_.localSize[0], curvatureProgram_.localSize[1]);
+    shapesOnly_ = false;
     gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
         gpu::timerStart(cmd, timer_);
         gpu::dispatch(device_, cmd, normalsProgram_, meshCount_, rows, 1, {&positions_, &wedgeOffsets_, &wedges_, &normals_},
@@ -157,8 +158,32 @@ double GpuCurvature::run()
     return gpu::timerMilliseconds(device_, timer_);
 }
 
+GpuCurvature::PackedShapes GpuCurvature::downloadShapes()
+{
+    if (meshCount_ == 0)
+        fail("GpuCurvature::downloadShapes: no positions set");
+    const size_t n = static_cast<size_t>(meshCount_) * static_cast<size_t>(vertexCount_);
+    PackedShapes p{std::vector<std::uint32_t>(4 * n), std::vector<std::uint32_t>(n)};
+    gpu::readbackBuffer(device_, shapes_, p.shapes.data(), p.shapes.size() * 4);
+    gpu::readbackBuffer(device_, shapesC23_, p.c23.data(), p.c23.size() * 4);
+    return p;
+}
+
+void GpuCurvature::uploadShapes(const PackedShapes& p)
+{
+    const size_t n = static_cast<size_t>(meshCount_) * static_cast<size_t>(vertexCount_);
+    if (meshCount_ == 0 || p.shapes.size() != 4 * n || p.c23.size() != n)
+        fail("GpuCurvature::uploadShapes: ", p.shapes.size(), " shape words and ", p.c23.size(), " C23 words for ", meshCount_,
+             " meshes of ", vertexCount_, " vertices");
+    gpu::uploadBuffer(device_, shapes_, p.shapes.data(), p.shapes.size() * 4);
+    gpu::uploadBuffer(device_, shapesC23_, p.c23.data(), p.c23.size() * 4);
+    shapesOnly_ = true;
+}
+
 GpuCurvature::Result GpuCurvature::download()
 {
+    if (shapesOnly_)
+        fail("GpuCurvature::download: only the packed shapes were restored (from a cache); run() computes the rest");
     Result r;
     r.normal = downloadBatch(device_, normals_, meshCount_, vertexCount_, 3);
     r.curvature = downloadBatch(device_, curvature_, meshCount_, vertexCount_, 4);

@@ -52,6 +52,18 @@ public:
     };
     Result download();
 
+    /// The packed shapes the contour kernels read (shaders/shared.h), exactly as on the GPU in
+    /// batch layout: 4 words per (mesh, vertex) and 1 of SHAPE_C23. For caching the one-time
+    /// pass (contours/curvature_cache.h), as the thesis kept curvature files (4.3.4).
+    struct PackedShapes {
+        std::vector<std::uint32_t> shapes;
+        std::vector<std::uint32_t> c23;
+    };
+    PackedShapes downloadShapes();
+    /// Restores shapes of the current positions instead of run(). Only the packed shapes are
+    /// then valid: download() throws until run() is called. Throws Error on a size mismatch.
+    void uploadShapes(const PackedShapes& packed);
+
     std::uint32_t meshCount() const { return meshCount_; }
     Eigen::Index vertexCount() const { return vertexCount_; }
 
@@ -77,6 +89,7 @@ private:
     gpu::Device& device_;
     Eigen::Index vertexCount_;
     std::uint32_t meshCount_ = 0;
+    bool shapesOnly_ = false; // restored by uploadShapes: the other result buffers are stale
     gpu::ComputeProgram normalsProgram_, curvatureProgram_, derivativeProgram_;
     Wedges hostWedges_;
     std::vector<std::array<double, 4>> vertexBounds_;

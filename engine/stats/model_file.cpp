@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/hash.h"
 
 #include <bit>
 #include <cstring>
@@ -20,12 +21,7 @@ constexpr char kMagic[8] = {'F', 'S', 'K', 'F', 'A', 'C', 'E', '\0'};
 
 std::uint64_t fnv1a(const std::string& bytes)
 {
-    std::uint64_t hash = 14695981039346656037ull;
-    for (unsigned char c : bytes) {
-        hash ^= c;
-        hash *= 1099511628211ull;
-    }
-    return hash;
+    return facesketch::fnv1a(bytes.data(), bytes.size());
 }
 
 class Writer {

@@ -29,7 +29,7 @@ TEST_CASE("face_poses: neutral, 21 expressions and 14 visemes with unique names"
         REQUIRE(names.count(e));
 }
 
-TEST_CASE("face_poses: jaw opening carries lower lip, lower teeth and tongue; upper teeth stay")
+TEST_CASE("face_poses: jaw opening carries lower lip, lower teeth and tongue, and the upper teeth stay")
 {
     const FaceTopology t = buildFaceTopology(Resolution::Low);
     const FaceParams p = sampleFaceParams(5, 0);

@@ -72,7 +72,7 @@ TEST_CASE("face_topology: about 900, 6,000 and 25,000 vertices, all labels valid
         REQUIRE(contourNames.count(name));
 }
 
-TEST_CASE("face_topology: eyeballs, teeth and tongue are closed; the skin's holes are the eye sockets and mouth")
+TEST_CASE("face_topology: eyeballs, teeth and tongue are closed, and the skin's holes are the eye sockets and mouth")
 {
     const FaceTopology t = buildFaceTopology(Resolution::Low);
     const Manifest& m = t.labels;
