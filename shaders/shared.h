@@ -48,27 +48,42 @@
 #define DRAW_MODE_POINTS 2  // unlit round points
 
 // The per-view contour tests and the candidate cloud (thesis 4.3, 4.4) in two passes, so that
-// lavapipe, which runs a branch for all lanes of a SIMD row when any lane takes it, does the
-// neighbour work only where a vertex passed the cheap tests and reads one float per neighbour
-// instead of recomputing its radial curvature:
-// contours_radial.comp: per (mesh, vertex), the radial curvature (for the neighbours' tests) and
-// the vertex's own tests: silhouette, labelled, and the suggestive pre-test (front-facing and
-// D_w k_r over threshold), culled to the rectangle and sphere.
-#define CONTOURS_BINDING_POSITIONS 0
-#define CONTOURS_BINDING_SHAPE 1      // DCURV_BINDING_SHAPE
-#define CONTOURS_BINDING_SHAPE_C23 2  // DCURV_BINDING_SHAPE_C23
-#define CONTOURS_BINDING_FLAGS 3      // uint per vertex: VERTEX_LABELLED | VERTEX_EXCLUDED
-#define CONTOURS_BINDING_VIEW 4       // ContourViewGpu (engine/contours/candidates_gpu.cpp)
-#define CONTOURS_BINDING_RADIAL 5     // out: float, batch layout: k_r, or CONTOURS_NO_RADIAL without a tangent plane
-#define CONTOURS_BINDING_STATE 6      // out: uint, batch layout: CONTOUR_* bits found, CONTOURS_TEST_SUGGESTIVE
+// the suggestive zero-crossing test reads one word per neighbour instead of recomputing its
+// radial curvature. Written for lavapipe (Mesa 22.3) as much as for GPUs, where it measured:
+// - every storage-buffer access at a per-invocation address is a scalar loop over the 8 lanes
+//   of a SIMD row, and it runs (masked) even where no lane takes the branch around it, so the
+//   kernels keep few of them: large read-only data are texel buffers (one vector gather per
+//   row), pass 1 writes a single word per (mesh, vertex), and only the append stores;
+// - a branch is run for every lane of a row when any lane takes it, so every lane does the
+//   same work in pass 1 and the neighbour loop of pass 2 has a trip count of zero where the
+//   vertex failed the pre-test;
+// - the body of a loop costs several times the same code outside one (a grid-stride loop
+//   around the whole kernel halved its speed), so each invocation does one (mesh, vertex).
+// contours_radial.comp: per (mesh, vertex), the radial curvature and the vertex's own tests:
+// silhouette, labelled, and the suggestive pre-test (front-facing and D_w k_r over threshold),
+// culled to the rectangle and sphere. (T) marks texel-buffer bindings (gpu::TexelView).
+#define CONTOURS_GROUP_VERTICES 32   // workgroups of 8 x 32 (invocations along vertices)
+#define CONTOURS_BINDING_POSITIONS 0  // (T) RGBA32F, batch layout
+#define CONTOURS_BINDING_SHAPE 1      // (T) RGBA32UI: DCURV_BINDING_SHAPE
+#define CONTOURS_BINDING_SHAPE_C23 2  // (T) R32UI: DCURV_BINDING_SHAPE_C23
+#define CONTOURS_BINDING_FLAGS 3      // (T) R32UI per vertex: VERTEX_LABELLED | VERTEX_EXCLUDED
+#define CONTOURS_BINDING_VIEW 4       // uniform ContourViewGpu (engine/contours/candidates_gpu.cpp)
+#define CONTOURS_BINDING_RADIAL_OUT 5 // out: uint, batch layout, the radial word (below)
 // contours.comp: the suggestive zero-crossing test against the one-ring and the atomic append.
-#define CONTOURS_BINDING_NEIGHBOUR_OFFSETS 7 // uint[vertexCount + 1]
-#define CONTOURS_BINDING_NEIGHBOURS 8        // uint[]: one-rings, geometry/wedges.h buildNeighbours
+#define CONTOURS_BINDING_RADIAL 6     // (T) R32UI view of RADIAL_OUT
+#define CONTOURS_BINDING_NEIGHBOUR_OFFSETS 7 // (T) R32UI [vertexCount + 1]
+#define CONTOURS_BINDING_NEIGHBOURS 8        // (T) R32UI: one-rings, geometry/wedges.h buildNeighbours
 #define CONTOURS_BINDING_OUTPUT 9     // uint count, 3 pad, then candidates: uvec4(mesh, vertex, types, 0), vec4(world, depth), vec4(screen, 0, 0)
-#define CONTOURS_BINDING_VERTEX_LIST 10 // uint[counts.w]: the vertices both passes visit, ascending (the host culls
+#define CONTOURS_BINDING_VERTEX_LIST 10 // (T) R32UI [counts.w]: the vertices both passes visit, ascending (the host culls
                                         // those no mesh shows in the rectangle, keeping their one-rings)
-#define CONTOURS_TEST_SUGGESTIVE 8u   // state bit: passed the suggestive pre-test, check the one-ring
-#define CONTOURS_NO_RADIAL 3.0e38     // radial value of a vertex without a tangent plane
+#define CONTOURS_TEXEL_BINDINGS 0x5CFu // bits of the (T) bindings above
+// The radial word: the bits of k_r as a float whose three lowest mantissa bits are replaced by
+// the vertex's own results (CONTOUR_SILHOUETTE, CONTOUR_LABELLED, and CONTOUR_SUGGESTIVE for
+// "passed the pre-test, check the one-ring"), or CONTOURS_NO_RADIAL without a tangent plane.
+// Dropping 3 of 23 mantissa bits moves k_r by under 1e-6 of itself, far inside the tie
+// tolerance of the CPU comparison (1e-3 of |k1| + |k2|), and keeps its sign.
+#define CONTOURS_STATE_MASK 7u
+#define CONTOURS_NO_RADIAL 0x7f800000u // +inf with no state bits: never a candidate, no k_r
 #define CONTOUR_SILHOUETTE 1u
 #define CONTOUR_SUGGESTIVE 2u
 #define CONTOUR_LABELLED 4u

@@ -1,7 +1,6 @@
 #include "contours/candidates_gpu.h"
 
 #include "core/error.h"
-#include "geometry/mesh_batch.h"
 #include "geometry/wedges.h"
 #include "shaders/contours_comp.h"
 #include "shaders/contours_radial_comp.h"
@@ -75,20 +74,23 @@ GpuCandidates::GpuCandidates(gpu::Device& device, GpuCurvature& curvature, const
     if (!flags.empty() && flags.size() != nv)
         fail("GpuCandidates: ", flags.size(), " vertex flags for ", nv, " vertices");
     radialProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(contours_radial_comp), kBindings, 0,
-                                               1u << CONTOURS_BINDING_VIEW);
-    program_ = gpu::createComputeProgram(device_, gpu::shaderCode(contours_comp), kBindings, 0, 1u << CONTOURS_BINDING_VIEW);
-    flags_ = gpu::createBuffer(device_, nv * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+                                               1u << CONTOURS_BINDING_VIEW, CONTOURS_TEXEL_BINDINGS);
+    program_ = gpu::createComputeProgram(device_, gpu::shaderCode(contours_comp), kBindings, 0, 1u << CONTOURS_BINDING_VIEW,
+                                         CONTOURS_TEXEL_BINDINGS);
     rings_ = buildNeighbours(curvature.hostWedges());
-    const Neighbours& rings = rings_;
-    vertexList_ = gpu::createBuffer(device_, nv * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    neighbourOffsets_ = gpu::createBuffer(device_, rings.offsets.size() * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    gpu::uploadBuffer(device_, neighbourOffsets_, rings.offsets.data(), neighbourOffsets_.size);
     // A vertex without neighbours (isolated) still needs a non-empty buffer.
-    std::vector<std::uint32_t> ringVertices = rings.vertices.empty() ? std::vector<std::uint32_t>{0} : rings.vertices;
-    neighbours_ = gpu::createBuffer(device_, ringVertices.size() * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    gpu::uploadBuffer(device_, neighbours_, ringVertices.data(), neighbours_.size);
-    std::vector<std::uint32_t> f = flags.empty() ? std::vector<std::uint32_t>(nv, 0) : flags;
-    gpu::uploadBuffer(device_, flags_, f.data(), flags_.size);
+    const std::vector<std::uint32_t> ringVertices = rings_.vertices.empty() ? std::vector<std::uint32_t>{0} : rings_.vertices;
+    const std::vector<std::uint32_t> f = flags.empty() ? std::vector<std::uint32_t>(nv, 0) : flags;
+    auto table = [&](gpu::Buffer& buffer, gpu::TexelView& view, const std::uint32_t* data, size_t count) {
+        buffer = gpu::createBuffer(device_, count * sizeof(std::uint32_t), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+        if (data)
+            gpu::uploadBuffer(device_, buffer, data, buffer.size);
+        view = gpu::createTexelView(device_, buffer, VK_FORMAT_R32_UINT, sizeof(std::uint32_t));
+    };
+    table(flags_, flagTexels_, f.data(), nv);
+    table(vertexList_, vertexListTexels_, nullptr, nv);
+    table(neighbourOffsets_, neighbourOffsetTexels_, rings_.offsets.data(), rings_.offsets.size());
+    table(neighbours_, neighbourTexels_, ringVertices.data(), ringVertices.size());
     view_ = gpu::createBuffer(device_, sizeof(ContourViewGpu), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
     timer_ = gpu::createGpuTimer(device_);
 }
@@ -100,14 +102,15 @@ GpuCandidates::~GpuCandidates()
     if (output_.buffer)
         gpu::destroyBuffer(device_, output_);
     if (radial_.buffer) {
+        gpu::destroyTexelView(device_, radialTexels_);
         gpu::destroyBuffer(device_, radial_);
-        gpu::destroyBuffer(device_, state_);
     }
-    gpu::destroyBuffer(device_, neighbours_);
-    gpu::destroyBuffer(device_, neighbourOffsets_);
-    gpu::destroyBuffer(device_, vertexList_);
     gpu::destroyBuffer(device_, view_);
-    gpu::destroyBuffer(device_, flags_);
+    for (auto [buffer, view] : {std::pair{&neighbours_, &neighbourTexels_}, std::pair{&neighbourOffsets_, &neighbourOffsetTexels_},
+                                std::pair{&vertexList_, &vertexListTexels_}, std::pair{&flags_, &flagTexels_}}) {
+        gpu::destroyTexelView(device_, *view);
+        gpu::destroyBuffer(device_, *buffer);
+    }
     gpu::destroyComputeProgram(device_, program_);
     gpu::destroyComputeProgram(device_, radialProgram_);
 }
@@ -122,11 +125,11 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
     if (radial_.size != perVertex) { // first build, or the curvature now holds another batch
         vkDeviceWaitIdle(device_.device);
         if (radial_.buffer) {
+            gpu::destroyTexelView(device_, radialTexels_);
             gpu::destroyBuffer(device_, radial_);
-            gpu::destroyBuffer(device_, state_);
         }
-        radial_ = gpu::createBuffer(device_, perVertex, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-        state_ = gpu::createBuffer(device_, perVertex, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        radial_ = gpu::createBuffer(device_, perVertex, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+        radialTexels_ = gpu::createTexelView(device_, radial_, VK_FORMAT_R32_UINT, sizeof(std::uint32_t));
     }
     // The vertices some mesh may show inside the rectangle and the culling sphere, and their
     // one-rings (whose radial curvature the zero-crossing test reads). A vertex left out lies
@@ -158,6 +161,10 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
     }
     gpu::uploadBuffer(device_, vertexList_, list.data(), list.size() * sizeof(std::uint32_t));
     const auto listCount = static_cast<std::uint32_t>(list.size());
+    const std::uint64_t groupsY = (listCount + program_.localSize[1] - 1) / program_.localSize[1];
+    if (groupsY > device_.properties.limits.maxComputeWorkGroupCount[1])
+        fail("GpuCandidates::build: ", listCount, " vertices need ", groupsY, " workgroups, more than this device's limit of ",
+             device_.properties.limits.maxComputeWorkGroupCount[1]);
 
     if (capacity_ == 0) {
         // A view's cloud is typically a few percent of all vertices; grown on demand below.
@@ -180,14 +187,15 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
         view.counts[2] = capacity_;
         view.counts[3] = listCount;
         gpu::uploadBuffer(device_, view_, &view, sizeof(view));
-        const std::uint32_t rows = batchRows(listCount, meshCount, program_.localSize[0], program_.localSize[1]);
+        // One invocation per (mesh, listed vertex): the kernels have no loop over vertices.
+        const std::uint32_t rows = listCount;
         gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
             gpu::timerStart(cmd, timer_);
             vkCmdFillBuffer(cmd, output_.buffer, 0, outputHeader, 0);
             gpu::transferToComputeBarrier(cmd);
-            const std::initializer_list<const gpu::Buffer*> buffers = {
-                &curvature_.positions(), &curvature_.shapes(), &curvature_.shapesC23(), &flags_, &view_,
-                &radial_, &state_, &neighbourOffsets_, &neighbours_, &output_, &vertexList_};
+            const std::initializer_list<gpu::Binding> buffers = {
+                &curvature_.positionTexels(), &curvature_.shapeTexels(), &curvature_.c23Texels(), &flagTexels_, &view_, &radial_,
+                &radialTexels_, &neighbourOffsetTexels_, &neighbourTexels_, &output_, &vertexListTexels_};
             gpu::dispatchRaw(device_, cmd, radialProgram_, meshCount, rows, 1, buffers, nullptr, 0);
             gpu::computeBarrier(cmd);
             gpu::dispatchRaw(device_, cmd, program_, meshCount, rows, 1, buffers, nullptr, 0);

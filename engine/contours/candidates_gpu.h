@@ -37,7 +37,9 @@ private:
     gpu::ComputeProgram radialProgram_, program_;
     Neighbours rings_; // one-rings on the host, for listing the vertices a view needs
     gpu::Buffer flags_, view_, neighbourOffsets_, neighbours_, vertexList_;
-    gpu::Buffer radial_, state_; // per (mesh, vertex), between the two passes
+    gpu::TexelView flagTexels_, neighbourOffsetTexels_, neighbourTexels_, vertexListTexels_;
+    gpu::Buffer radial_; // the radial word per (mesh, vertex), between the two passes
+    gpu::TexelView radialTexels_;
     gpu::Buffer output_;
     std::uint32_t capacity_ = 0;
     gpu::GpuTimer timer_;

@@ -92,6 +92,9 @@ GpuCurvature::~GpuCurvature()
 
 void GpuCurvature::destroyBatchBuffers()
 {
+    for (gpu::TexelView* t : {&c23Texels_, &shapeTexels_, &positionTexels_})
+        if (t->view)
+            gpu::destroyTexelView(device_, *t);
     for (gpu::Buffer* b : {&shapesC23_, &shapes_, &derivatives_, &directions_, &curvature_, &normals_, &positions_})
         if (b->buffer)
             gpu::destroyBuffer(device_, *b);
@@ -110,9 +113,14 @@ void GpuCurvature::setPositions(const std::vector<float>& positions)
     if (!positions_.buffer || positions_.size != bytes) {
         vkDeviceWaitIdle(device_.device);
         destroyBatchBuffers();
+        // The contour kernels read positions and shapes as texel buffers (gpu::TexelView).
+        const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
         for (gpu::Buffer* b : {&positions_, &normals_, &curvature_, &directions_, &derivatives_, &shapes_})
-            *b = gpu::createBuffer(device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-        shapesC23_ = gpu::createBuffer(device_, bytes / 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+            *b = gpu::createBuffer(device_, bytes, usage);
+        shapesC23_ = gpu::createBuffer(device_, bytes / 4, usage);
+        positionTexels_ = gpu::createTexelView(device_, positions_, VK_FORMAT_R32G32B32A32_SFLOAT, 16);
+        shapeTexels_ = gpu::createTexelView(device_, shapes_, VK_FORMAT_R32G32B32A32_UINT, 16);
+        c23Texels_ = gpu::createTexelView(device_, shapesC23_, VK_FORMAT_R32_UINT, 4);
     }
     meshCount_ = meshCount;
     const auto nv = static_cast<size_t>(vertexCount_);

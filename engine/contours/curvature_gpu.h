@@ -76,6 +76,10 @@ public:
     const gpu::Buffer& shapes() const { return shapes_; }
     const gpu::Buffer& shapesC23() const { return shapesC23_; }
     const gpu::Buffer& wedgeOffsets() const { return wedgeOffsets_; }
+    /// Texel views of positions (RGBA32F), shapes (RGBA32UI) and SHAPE_C23 (R32UI), same layout.
+    const gpu::TexelView& positionTexels() const { return positionTexels_; }
+    const gpu::TexelView& shapeTexels() const { return shapeTexels_; }
+    const gpu::TexelView& c23Texels() const { return c23Texels_; }
     /// The wedges on the host (geometry/wedges.h), for kernels that need other views of the topology.
     const Wedges& hostWedges() const { return hostWedges_; }
     /// Per vertex, a sphere holding that vertex in every mesh of the batch: centre xyz and
@@ -95,6 +99,7 @@ private:
     std::vector<std::array<double, 4>> vertexBounds_;
     gpu::Buffer wedgeOffsets_, wedges_;
     gpu::Buffer positions_, normals_, curvature_, directions_, derivatives_, shapes_, shapesC23_;
+    gpu::TexelView positionTexels_, shapeTexels_, c23Texels_;
     gpu::GpuTimer timer_;
 };
 

@@ -106,6 +106,32 @@ void readbackBuffer(Device& device, const Buffer& buffer, void* data, std::size_
     destroyBuffer(device, staging);
 }
 
+TexelView createTexelView(Device& device, const Buffer& buffer, VkFormat format, std::uint32_t texelBytes)
+{
+    if (texelBytes == 0 || buffer.size % texelBytes != 0)
+        fail("createTexelView: a buffer of ", buffer.size, " bytes is not a whole number of ", texelBytes, "-byte texels");
+    const VkDeviceSize elements = buffer.size / texelBytes;
+    if (elements > device.properties.limits.maxTexelBufferElements)
+        fail("createTexelView: ", elements, " texels exceed this device's maxTexelBufferElements (",
+             device.properties.limits.maxTexelBufferElements, ")");
+    auto info = makeStruct<VkBufferViewCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO);
+    info.buffer = buffer.buffer;
+    info.format = format;
+    info.offset = 0;
+    info.range = VK_WHOLE_SIZE;
+    TexelView v;
+    VK_CHECK(vkCreateBufferView(device.device, &info, nullptr, &v.view));
+    v.format = format;
+    v.elements = elements;
+    return v;
+}
+
+void destroyTexelView(Device& device, TexelView& view)
+{
+    vkDestroyBufferView(device.device, view.view, nullptr);
+    view = TexelView{};
+}
+
 Image createImage(Device& device, std::uint32_t width, std::uint32_t height, VkFormat format, VkImageUsageFlags usage,
                   VkImageAspectFlags aspect, VkSampleCountFlagBits samples)
 {

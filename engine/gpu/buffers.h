@@ -32,6 +32,23 @@ void uploadBuffer(Device& device, Buffer& buffer, const void* data, std::size_t 
 /// first, so all previously submitted writes are visible.
 void readbackBuffer(Device& device, const Buffer& buffer, void* data, std::size_t size, VkDeviceSize offset = 0);
 
+/// A typed view of a buffer, bound as a uniform texel buffer (GLSL `samplerBuffer`,
+/// `usamplerBuffer`; texelFetch). For data every invocation reads at its own address: a CPU
+/// implementation such as lavapipe fetches texels with one vector gather per SIMD row, where
+/// a storage-buffer load at a per-invocation address is a scalar loop over the row's lanes
+/// with two branches per lane (Mesa 22.3). The buffer needs VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT.
+struct TexelView {
+    VkBufferView view = VK_NULL_HANDLE;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    VkDeviceSize elements = 0; ///< texels in the view
+};
+
+/// A view of all of `buffer` as texels of `format` (e.g. VK_FORMAT_R32_UINT,
+/// VK_FORMAT_R32G32B32A32_SFLOAT) of `texelBytes` bytes each. Throws Error when the buffer holds
+/// more texels than the device's maxTexelBufferElements or is not a whole number of texels.
+TexelView createTexelView(Device& device, const Buffer& buffer, VkFormat format, std::uint32_t texelBytes);
+void destroyTexelView(Device& device, TexelView& view);
+
 struct Image {
     VkImage image = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;

@@ -40,15 +40,20 @@ VkShaderModule createShaderModule(Device& device, ShaderCode code)
 namespace {
 VkDescriptorType bindingType(const ComputeProgram& p, std::uint32_t binding)
 {
+    if ((p.texelMask >> binding) & 1u)
+        return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
     return (p.uniformMask >> binding) & 1u ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
 } // namespace
 
 ComputeProgram createComputeProgram(Device& device, ShaderCode code, std::uint32_t bufferCount, std::uint32_t pushConstantSize,
-                                    std::uint32_t uniformMask)
+                                    std::uint32_t uniformMask, std::uint32_t texelMask)
 {
+    if (uniformMask & texelMask)
+        fail("createComputeProgram: bindings ", uniformMask & texelMask, " are marked both uniform and texel");
     ComputeProgram p;
     p.uniformMask = uniformMask;
+    p.texelMask = texelMask;
     readLocalSize(code, p.localSize);
     p.bufferCount = bufferCount;
     p.pushConstantSize = pushConstantSize;
@@ -91,24 +96,33 @@ void destroyComputeProgram(Device& device, ComputeProgram& p)
 }
 
 void dispatchRaw(Device& device, VkCommandBuffer cmd, const ComputeProgram& program, std::uint32_t countX, std::uint32_t countY,
-                 std::uint32_t countZ, std::initializer_list<const Buffer*> buffers, const void* constants, std::size_t constantsSize)
+                 std::uint32_t countZ, std::initializer_list<Binding> buffers, const void* constants, std::size_t constantsSize)
 {
     assert(buffers.size() == program.bufferCount);
     assert(constantsSize == program.pushConstantSize);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, program.pipeline);
 
-    std::vector<VkDescriptorBufferInfo> infos;
+    std::vector<VkDescriptorBufferInfo> infos(buffers.size());
+    std::vector<VkBufferView> views(buffers.size());
     std::vector<VkWriteDescriptorSet> writes;
-    infos.reserve(buffers.size());
-    for (const Buffer* b : buffers)
-        infos.push_back({b->buffer, 0, VK_WHOLE_SIZE});
-    for (std::uint32_t i = 0; i < infos.size(); ++i) {
+    std::uint32_t i = 0;
+    for (const Binding& b : buffers) {
+        const bool texel = (program.texelMask >> i) & 1u;
+        if (texel != (b.texel != nullptr))
+            fail("dispatch: binding ", i, texel ? " needs a texel view" : " needs a buffer");
         auto w = makeStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
         w.dstBinding = i;
         w.descriptorCount = 1;
         w.descriptorType = bindingType(program, i);
-        w.pBufferInfo = &infos[i];
+        if (texel) {
+            views[i] = b.texel->view;
+            w.pTexelBufferView = &views[i];
+        } else {
+            infos[i] = {b.buffer->buffer, 0, VK_WHOLE_SIZE};
+            w.pBufferInfo = &infos[i];
+        }
         writes.push_back(w);
+        ++i;
     }
     if (!writes.empty())
         device.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, program.layout, 0, static_cast<std::uint32_t>(writes.size()),

@@ -3,7 +3,9 @@
 // bindings 0..N-1 in set 0 are storage buffers, or uniform buffers where `uniformMask` has
 // bit i set (small per-dispatch parameters: implementations treat them as uniform, which a CPU
 // implementation such as lavapipe turns into one scalar load instead of a load per invocation),
-// with an optional push-constant block.
+// or uniform texel buffers where `texelMask` has bit i set (large read-only data each
+// invocation reads at its own address: see TexelView in gpu/buffers.h), with an optional
+// push-constant block.
 // The workgroup size is read from the SPIR-V (OpExecutionMode LocalSize), so the shader is the
 // single source of truth for it.
 
@@ -43,21 +45,32 @@ struct ComputeProgram {
     std::uint32_t bufferCount = 0;
     std::uint32_t pushConstantSize = 0;
     std::uint32_t uniformMask = 0;
+    std::uint32_t texelMask = 0;
+};
+
+/// What one binding of a dispatch refers to: a whole buffer (storage or uniform) or a texel
+/// view, as the program's masks say. Converts from either pointer, so `{&a, &view, &b}` works.
+struct Binding {
+    Binding(const Buffer* b) : buffer(b) {}
+    Binding(const TexelView* t) : texel(t) {}
+    const Buffer* buffer = nullptr;
+    const TexelView* texel = nullptr;
 };
 
 ComputeProgram createComputeProgram(Device& device, ShaderCode code, std::uint32_t bufferCount, std::uint32_t pushConstantSize,
-                                    std::uint32_t uniformMask = 0);
+                                    std::uint32_t uniformMask = 0, std::uint32_t texelMask = 0);
 void destroyComputeProgram(Device& device, ComputeProgram& program);
 
-/// Binds `program` and `buffers` (binding i = buffers[i], whole buffer), pushes `constants`
+/// Binds `program` and `buffers` (binding i = buffers[i]: a whole buffer, or a texel view where
+/// the program's texelMask says so; a mismatch throws Error), pushes `constants`
 /// and dispatches enough workgroups to cover countX x countY x countZ invocations. The shader
 /// must bounds-check. Put the barrier that consumes the result at the call site.
 void dispatchRaw(Device& device, VkCommandBuffer cmd, const ComputeProgram& program, std::uint32_t countX, std::uint32_t countY,
-                 std::uint32_t countZ, std::initializer_list<const Buffer*> buffers, const void* constants, std::size_t constantsSize);
+                 std::uint32_t countZ, std::initializer_list<Binding> buffers, const void* constants, std::size_t constantsSize);
 
 template <typename Constants>
 void dispatch(Device& device, VkCommandBuffer cmd, const ComputeProgram& program, std::uint32_t countX, std::uint32_t countY,
-              std::uint32_t countZ, std::initializer_list<const Buffer*> buffers, const Constants& constants)
+              std::uint32_t countZ, std::initializer_list<Binding> buffers, const Constants& constants)
 {
     assert(program.pushConstantSize == sizeof(constants));
     dispatchRaw(device, cmd, program, countX, countY, countZ, buffers, &constants, sizeof(constants));
