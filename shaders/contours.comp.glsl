@@ -1,18 +1,19 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Pass 2 of the per-view contour tests (engine/contours/candidates.h): for every (mesh, vertex)
-// that passed a test in pass 1 (contours_radial.comp.glsl), the suggestive zero-crossing test
-// against its one-ring's radial words, culling to the view's rectangle and sphere, then the
-// candidate appended with an atomic counter.
+// that pass 1 (contours_radial.comp.glsl) listed as having passed a test, the suggestive
+// zero-crossing test against its one-ring's radial words, culling to the view's rectangle and
+// sphere, then the candidate appended with an atomic counter. Dispatched indirectly, with the
+// size pass 1 wrote.
 #include "shared.h"
 
-layout(local_size_x = BATCH_GROUP_MESHES, local_size_y = CONTOURS_GROUP_VERTICES, local_size_z = 1) in;
+layout(local_size_x = CONTOURS_GROUP_PAIRS, local_size_y = 1, local_size_z = 1) in;
 
 layout(binding = CONTOURS_BINDING_POSITIONS) uniform samplerBuffer positions;
 layout(binding = CONTOURS_BINDING_RADIAL) uniform usamplerBuffer radial;
 layout(binding = CONTOURS_BINDING_NEIGHBOUR_OFFSETS) uniform usamplerBuffer neighbourOffsets;
 layout(binding = CONTOURS_BINDING_NEIGHBOURS) uniform usamplerBuffer neighbours;
-layout(binding = CONTOURS_BINDING_VERTEX_LIST) uniform usamplerBuffer vertexList;
+layout(binding = CONTOURS_BINDING_WORK_TEXELS) uniform usamplerBuffer work;
 #include "contours_view.glsl"
 
 struct Candidate {
@@ -28,39 +29,36 @@ layout(binding = CONTOURS_BINDING_OUTPUT, std430) buffer Output {
 
 void main()
 {
-    uint mesh = gl_GlobalInvocationID.x;
-    uint meshCount = counts.y;
-    if (mesh >= meshCount)
+    uint slot = gl_GlobalInvocationID.x;
+    if (slot >= texelFetch(work, 3).x) // pair count
         return;
-    uint i = gl_GlobalInvocationID.y;
-    if (i < counts.w) {
-        uint v = texelFetch(vertexList, int(i)).x;
-        int index = int(v * meshCount + mesh);
-        uint word = texelFetch(radial, index).x;
-        uint bits = word & CONTOURS_STATE_MASK;
-        uint types = bits & (CONTOUR_SILHOUETTE | CONTOUR_LABELLED);
-        // A zero crossing of k_r on an edge marks its end nearer zero (ties: lower index). The
-        // loop runs zero times unless the vertex passed the pre-test.
-        float a = uintBitsToFloat(word & ~CONTOURS_STATE_MASK);
-        uint begin = texelFetch(neighbourOffsets, int(v)).x;
-        uint end = (bits & CONTOUR_SUGGESTIVE) != 0u ? texelFetch(neighbourOffsets, int(v + 1u)).x : begin;
-        for (uint k = begin; k < end; ++k) {
-            uint u = texelFetch(neighbours, int(k)).x;
-            uint other = texelFetch(radial, int(u * meshCount + mesh)).x;
-            float b = uintBitsToFloat(other & ~CONTOURS_STATE_MASK);
-            bool crossing = other != CONTOURS_NO_RADIAL && (a < 0.0) != (b < 0.0);
-            bool nearer = abs(a) < abs(b) || (abs(a) == abs(b) && v < u);
-            if (crossing && nearer)
-                types |= CONTOUR_SUGGESTIVE;
-        }
-        vec3 p = texelFetch(positions, index).xyz;
-        vec3 pixel = project(p);
-        bool inside = pixel.x >= rect.x && pixel.x <= rect.z && pixel.y >= rect.y && pixel.y <= rect.w &&
-                      length(p - sphere.xyz) <= sphere.w;
-        if (types == 0u || !inside)
-            return;
-        uint slot = atomicAdd(count, 1u);
-        if (slot < counts.z)
-            candidates[slot] = Candidate(uvec4(mesh, v, types, 0u), vec4(p, pixel.z), vec4(pixel.xy, 0.0, 0.0));
+    uint meshCount = counts.y;
+    uint index = texelFetch(work, int(CONTOURS_WORK_HEADER + slot)).x;
+    uint v = index / meshCount, mesh = index % meshCount;
+    uint word = texelFetch(radial, int(index)).x;
+    uint bits = word & CONTOURS_STATE_MASK;
+    uint types = bits & (CONTOUR_SILHOUETTE | CONTOUR_LABELLED);
+    // A zero crossing of k_r on an edge marks its end nearer zero (ties: lower index). The loop
+    // runs zero times unless the vertex passed the pre-test.
+    float a = uintBitsToFloat(word & ~CONTOURS_STATE_MASK);
+    uint begin = texelFetch(neighbourOffsets, int(v)).x;
+    uint end = (bits & CONTOUR_SUGGESTIVE) != 0u ? texelFetch(neighbourOffsets, int(v + 1u)).x : begin;
+    for (uint k = begin; k < end; ++k) {
+        uint u = texelFetch(neighbours, int(k)).x;
+        uint other = texelFetch(radial, int(u * meshCount + mesh)).x;
+        float b = uintBitsToFloat(other & ~CONTOURS_STATE_MASK);
+        bool crossing = other != CONTOURS_NO_RADIAL && (a < 0.0) != (b < 0.0);
+        bool nearer = abs(a) < abs(b) || (abs(a) == abs(b) && v < u);
+        if (crossing && nearer)
+            types |= CONTOUR_SUGGESTIVE;
     }
+    vec3 p = texelFetch(positions, int(index)).xyz;
+    vec3 pixel = project(p);
+    bool inside = pixel.x >= rect.x && pixel.x <= rect.z && pixel.y >= rect.y && pixel.y <= rect.w &&
+                  length(p - sphere.xyz) <= sphere.w;
+    if (types == 0u || !inside)
+        return;
+    uint at = atomicAdd(count, 1u);
+    if (at < counts.z)
+        candidates[at] = Candidate(uvec4(mesh, v, types, 0u), vec4(p, pixel.z), vec4(pixel.xy, 0.0, 0.0));
 }

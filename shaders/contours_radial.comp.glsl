@@ -1,12 +1,13 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_ballot : require
 // Pass 1 of the per-view contour tests (engine/contours/candidates.h, whose CPU reference this
 // follows): for every (mesh, vertex) the radial curvature k_r, which pass 2 reads for the
 // neighbours' zero-crossing test, and the vertex's own tests: silhouette, labelled, and the
 // suggestive pre-test (front-facing, D_w k_r l^2 over threshold). Both go out as one radial word
-// (shaders/shared.h). Culling to the rectangle and sphere is pass 2's, which projects the
-// vertices it appends anyway. Every lane does the same work: no branch a SIMD row would run
-// for one lane.
+// (shaders/shared.h), and the pairs that passed a test are listed for pass 2. Culling to the
+// rectangle and sphere is pass 2's, which projects the vertices it appends anyway. Every lane
+// does the same work: no branch a SIMD row would run for one lane.
 #include "shared.h"
 
 layout(local_size_x = BATCH_GROUP_MESHES, local_size_y = CONTOURS_GROUP_VERTICES, local_size_z = 1) in;
@@ -14,9 +15,13 @@ layout(local_size_x = BATCH_GROUP_MESHES, local_size_y = CONTOURS_GROUP_VERTICES
 layout(binding = CONTOURS_BINDING_POSITIONS) uniform samplerBuffer positions;
 layout(binding = CONTOURS_BINDING_SHAPE) uniform usamplerBuffer shapes;
 layout(binding = CONTOURS_BINDING_SHAPE_C23) uniform usamplerBuffer shapesC23;
-layout(binding = CONTOURS_BINDING_FLAGS) uniform usamplerBuffer flags;
 layout(binding = CONTOURS_BINDING_VERTEX_LIST) uniform usamplerBuffer vertexList;
 layout(binding = CONTOURS_BINDING_RADIAL_OUT, std430) restrict writeonly buffer Radial { uint radialOut[]; };
+layout(binding = CONTOURS_BINDING_WORK, std430) restrict buffer Work {
+    uvec3 appendGroups; // pass 2's indirect dispatch size
+    uint pairCount;
+    uint pairs[];
+};
 #include "contours_view.glsl"
 #include "octahedral.glsl"
 
@@ -28,7 +33,8 @@ void main()
         return;
     uint i = gl_GlobalInvocationID.y;
     if (i < counts.w) {
-        uint v = texelFetch(vertexList, int(i)).x;
+        uvec2 listed = texelFetch(vertexList, int(i)).xy; // vertex, flags
+        uint v = listed.x;
         int index = int(v * meshCount + mesh);
         vec3 p = texelFetch(positions, index).xyz;
         uvec4 shape = texelFetch(shapes, index);
@@ -52,7 +58,7 @@ void main()
         // +0 where undefined or zero, so that the word's sign is k_r's "below zero".
         kr = radialDefined && kr != 0.0 ? clamp(kr, -1e30, 1e30) : 0.0;
 
-        uint flag = texelFetch(flags, int(v)).x;
+        uint flag = listed.y;
         uint bits = 0u;
         if (abs(ndotv) < thresholds.x)
             bits |= CONTOUR_SILHOUETTE;
@@ -62,5 +68,18 @@ void main()
             bits |= CONTOUR_LABELLED;
         bits = (flag & VERTEX_EXCLUDED) == 0u ? bits : 0u;
         radialOut[index] = plane ? (floatBitsToUint(kr) & ~CONTOURS_STATE_MASK) | bits : CONTOURS_NO_RADIAL;
+
+        // List the pair for pass 2: one atomic per subgroup, which also grows pass 2's size.
+        bool forPass2 = plane && bits != 0u;
+        uvec4 ballot = subgroupBallot(forPass2);
+        uint count = subgroupBallotBitCount(ballot);
+        uint base = 0u;
+        if (subgroupElect() && count > 0u) {
+            base = atomicAdd(pairCount, count);
+            atomicMax(appendGroups.x, (base + count + CONTOURS_GROUP_PAIRS - 1u) / CONTOURS_GROUP_PAIRS);
+        }
+        base = subgroupBroadcastFirst(base);
+        if (forPass2)
+            pairs[base + subgroupBallotExclusiveBitCount(ballot)] = uint(index);
     }
 }

@@ -61,22 +61,30 @@
 //   around the whole kernel halved its speed), so each invocation does one (mesh, vertex).
 // contours_radial.comp: per (mesh, vertex), the radial curvature and the vertex's own tests:
 // silhouette, labelled, and the suggestive pre-test (front-facing and D_w k_r over threshold),
-// culled to the rectangle and sphere. (T) marks texel-buffer bindings (gpu::TexelView).
-#define CONTOURS_GROUP_VERTICES 32   // workgroups of 8 x 32 (invocations along vertices)
+// and the list of the (mesh, vertex) pairs that passed one (a quarter of them on faces), so that
+// pass 2 visits only those: one atomic per subgroup (ballot), and the indirect dispatch size.
+// (T) marks texel-buffer bindings (gpu::TexelView).
+#define CONTOURS_GROUP_VERTICES 32    // pass 1: workgroups of 8 meshes x 32 vertices
+#define CONTOURS_GROUP_PAIRS 256      // pass 2: workgroups of 256 listed pairs
 #define CONTOURS_BINDING_POSITIONS 0  // (T) RGBA32F, batch layout
 #define CONTOURS_BINDING_SHAPE 1      // (T) RGBA32UI: DCURV_BINDING_SHAPE
 #define CONTOURS_BINDING_SHAPE_C23 2  // (T) R32UI: DCURV_BINDING_SHAPE_C23
-#define CONTOURS_BINDING_FLAGS 3      // (T) R32UI per vertex: VERTEX_LABELLED | VERTEX_EXCLUDED
+#define CONTOURS_BINDING_VERTEX_LIST 3 // (T) RG32UI [counts.w]: the vertices pass 1 visits, ascending, and their
+                                       // VERTEX_LABELLED | VERTEX_EXCLUDED flags (the host culls those no mesh
+                                       // shows in the rectangle, keeping their one-rings)
 #define CONTOURS_BINDING_VIEW 4       // uniform ContourViewGpu (engine/contours/candidates_gpu.cpp)
 #define CONTOURS_BINDING_RADIAL_OUT 5 // out: uint, batch layout, the radial word (below)
-// contours.comp: the suggestive zero-crossing test against the one-ring and the atomic append.
+#define CONTOURS_BINDING_WORK 10      // out: uvec3 indirect dispatch size of pass 2 (host sets 0, 1, 1), uint pair
+                                      // count, then the listed pairs' batch indices v * meshCount + mesh
+// contours.comp: for each listed pair, the suggestive zero-crossing test against the one-ring,
+// culling to the rectangle and sphere, and the atomic append.
 #define CONTOURS_BINDING_RADIAL 6     // (T) R32UI view of RADIAL_OUT
 #define CONTOURS_BINDING_NEIGHBOUR_OFFSETS 7 // (T) R32UI [vertexCount + 1]
 #define CONTOURS_BINDING_NEIGHBOURS 8        // (T) R32UI: one-rings, geometry/wedges.h buildNeighbours
 #define CONTOURS_BINDING_OUTPUT 9     // uint count, 3 pad, then candidates: uvec4(mesh, vertex, types, 0), vec4(world, depth), vec4(screen, 0, 0)
-#define CONTOURS_BINDING_VERTEX_LIST 10 // (T) R32UI [counts.w]: the vertices both passes visit, ascending (the host culls
-                                        // those no mesh shows in the rectangle, keeping their one-rings)
-#define CONTOURS_TEXEL_BINDINGS 0x5CFu // bits of the (T) bindings above
+#define CONTOURS_BINDING_WORK_TEXELS 11 // (T) R32UI view of WORK
+#define CONTOURS_WORK_HEADER 4u         // uints before the pairs in WORK
+#define CONTOURS_TEXEL_BINDINGS 0x9CFu  // bits of the (T) bindings above
 // The radial word: the bits of k_r as a float whose three lowest mantissa bits are replaced by
 // the vertex's own results (CONTOUR_SILHOUETTE, CONTOUR_LABELLED, and CONTOUR_SUGGESTIVE for
 // "passed the pre-test, check the one-ring"), or CONTOURS_NO_RADIAL without a tangent plane.

@@ -73,6 +73,13 @@ GpuCandidates::GpuCandidates(gpu::Device& device, GpuCurvature& curvature, const
     const auto nv = static_cast<size_t>(curvature.vertexCount());
     if (!flags.empty() && flags.size() != nv)
         fail("GpuCandidates: ", flags.size(), " vertex flags for ", nv, " vertices");
+    // Pass 1 lists pairs with one atomic per subgroup (shaders/contours_radial.comp.glsl).
+    auto subgroup = gpu::makeStruct<VkPhysicalDeviceSubgroupProperties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES);
+    auto properties = gpu::makeStruct<VkPhysicalDeviceProperties2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2);
+    properties.pNext = &subgroup;
+    vkGetPhysicalDeviceProperties2(device_.physical, &properties);
+    if (!(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) || !(subgroup.supportedOperations & VK_SUBGROUP_FEATURE_BALLOT_BIT))
+        fail("GpuCandidates: the device (", device_.name, ") has no subgroup ballot in compute shaders");
     radialProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(contours_radial_comp), kBindings, 0,
                                                1u << CONTOURS_BINDING_VIEW, CONTOURS_TEXEL_BINDINGS);
     program_ = gpu::createComputeProgram(device_, gpu::shaderCode(contours_comp), kBindings, 0, 1u << CONTOURS_BINDING_VIEW,
@@ -80,17 +87,17 @@ GpuCandidates::GpuCandidates(gpu::Device& device, GpuCurvature& curvature, const
     rings_ = buildNeighbours(curvature.hostWedges());
     // A vertex without neighbours (isolated) still needs a non-empty buffer.
     const std::vector<std::uint32_t> ringVertices = rings_.vertices.empty() ? std::vector<std::uint32_t>{0} : rings_.vertices;
-    const std::vector<std::uint32_t> f = flags.empty() ? std::vector<std::uint32_t>(nv, 0) : flags;
-    auto table = [&](gpu::Buffer& buffer, gpu::TexelView& view, const std::uint32_t* data, size_t count) {
-        buffer = gpu::createBuffer(device_, count * sizeof(std::uint32_t), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    flags_ = flags.empty() ? std::vector<std::uint32_t>(nv, 0) : flags;
+    auto table = [&](gpu::Buffer& buffer, gpu::TexelView& view, const std::uint32_t* data, size_t count, int words) {
+        buffer = gpu::createBuffer(device_, count * words * sizeof(std::uint32_t), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
         if (data)
             gpu::uploadBuffer(device_, buffer, data, buffer.size);
-        view = gpu::createTexelView(device_, buffer, VK_FORMAT_R32_UINT, sizeof(std::uint32_t));
+        view = gpu::createTexelView(device_, buffer, words == 2 ? VK_FORMAT_R32G32_UINT : VK_FORMAT_R32_UINT,
+                                    words * sizeof(std::uint32_t));
     };
-    table(flags_, flagTexels_, f.data(), nv);
-    table(vertexList_, vertexListTexels_, nullptr, nv);
-    table(neighbourOffsets_, neighbourOffsetTexels_, rings_.offsets.data(), rings_.offsets.size());
-    table(neighbours_, neighbourTexels_, ringVertices.data(), ringVertices.size());
+    table(vertexList_, vertexListTexels_, nullptr, nv, 2);
+    table(neighbourOffsets_, neighbourOffsetTexels_, rings_.offsets.data(), rings_.offsets.size(), 1);
+    table(neighbours_, neighbourTexels_, ringVertices.data(), ringVertices.size(), 1);
     view_ = gpu::createBuffer(device_, sizeof(ContourViewGpu), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
     timer_ = gpu::createGpuTimer(device_);
 }
@@ -101,18 +108,25 @@ GpuCandidates::~GpuCandidates()
     gpu::destroyGpuTimer(device_, timer_);
     if (output_.buffer)
         gpu::destroyBuffer(device_, output_);
-    if (radial_.buffer) {
-        gpu::destroyTexelView(device_, radialTexels_);
-        gpu::destroyBuffer(device_, radial_);
-    }
+    destroyBatchBuffers();
     gpu::destroyBuffer(device_, view_);
     for (auto [buffer, view] : {std::pair{&neighbours_, &neighbourTexels_}, std::pair{&neighbourOffsets_, &neighbourOffsetTexels_},
-                                std::pair{&vertexList_, &vertexListTexels_}, std::pair{&flags_, &flagTexels_}}) {
+                                std::pair{&vertexList_, &vertexListTexels_}}) {
         gpu::destroyTexelView(device_, *view);
         gpu::destroyBuffer(device_, *buffer);
     }
     gpu::destroyComputeProgram(device_, program_);
     gpu::destroyComputeProgram(device_, radialProgram_);
+}
+
+void GpuCandidates::destroyBatchBuffers()
+{
+    if (!radial_.buffer)
+        return;
+    gpu::destroyTexelView(device_, workTexels_);
+    gpu::destroyBuffer(device_, work_);
+    gpu::destroyTexelView(device_, radialTexels_);
+    gpu::destroyBuffer(device_, radial_);
 }
 
 std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourParams& p, double* timing)
@@ -122,14 +136,19 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
     if (meshCount == 0)
         fail("GpuCandidates::build: the curvature holds no meshes");
     const VkDeviceSize perVertex = VkDeviceSize(meshCount) * vertexCount * sizeof(std::uint32_t);
+    const std::uint64_t pairGroups = (std::uint64_t(meshCount) * vertexCount + CONTOURS_GROUP_PAIRS - 1) / CONTOURS_GROUP_PAIRS;
+    if (pairGroups > device_.properties.limits.maxComputeWorkGroupCount[0])
+        fail("GpuCandidates::build: ", meshCount, " faces of ", vertexCount, " vertices may need ", pairGroups,
+             " workgroups in pass 2, more than this device's limit of ", device_.properties.limits.maxComputeWorkGroupCount[0]);
     if (radial_.size != perVertex) { // first build, or the curvature now holds another batch
         vkDeviceWaitIdle(device_.device);
-        if (radial_.buffer) {
-            gpu::destroyTexelView(device_, radialTexels_);
-            gpu::destroyBuffer(device_, radial_);
-        }
-        radial_ = gpu::createBuffer(device_, perVertex, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+        destroyBatchBuffers();
+        const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+        radial_ = gpu::createBuffer(device_, perVertex, usage);
         radialTexels_ = gpu::createTexelView(device_, radial_, VK_FORMAT_R32_UINT, sizeof(std::uint32_t));
+        work_ = gpu::createBuffer(device_, CONTOURS_WORK_HEADER * sizeof(std::uint32_t) + perVertex,
+                                  usage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+        workTexels_ = gpu::createTexelView(device_, work_, VK_FORMAT_R32_UINT, sizeof(std::uint32_t));
     }
     // The vertices some mesh may show inside the rectangle and the culling sphere, and their
     // one-rings (whose radial curvature the zero-crossing test reads). A vertex left out lies
@@ -159,7 +178,12 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
             *timing = 0;
         return {};
     }
-    gpu::uploadBuffer(device_, vertexList_, list.data(), list.size() * sizeof(std::uint32_t));
+    std::vector<std::uint32_t> entries(2 * list.size()); // vertex, flags
+    for (size_t i = 0; i < list.size(); ++i) {
+        entries[2 * i] = list[i];
+        entries[2 * i + 1] = flags_[list[i]];
+    }
+    gpu::uploadBuffer(device_, vertexList_, entries.data(), entries.size() * sizeof(std::uint32_t));
     const auto listCount = static_cast<std::uint32_t>(list.size());
     const std::uint64_t groupsY = (listCount + program_.localSize[1] - 1) / program_.localSize[1];
     if (groupsY > device_.properties.limits.maxComputeWorkGroupCount[1])
@@ -192,13 +216,15 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
         gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
             gpu::timerStart(cmd, timer_);
             vkCmdFillBuffer(cmd, output_.buffer, 0, outputHeader, 0);
+            const std::uint32_t workHeader[CONTOURS_WORK_HEADER] = {0, 1, 1, 0}; // pass 2's size (x, y, z), pairs
+            vkCmdUpdateBuffer(cmd, work_.buffer, 0, sizeof(workHeader), workHeader);
             gpu::transferToComputeBarrier(cmd);
             const std::initializer_list<gpu::Binding> buffers = {
-                &curvature_.positionTexels(), &curvature_.shapeTexels(), &curvature_.c23Texels(), &flagTexels_, &view_, &radial_,
-                &radialTexels_, &neighbourOffsetTexels_, &neighbourTexels_, &output_, &vertexListTexels_};
+                &curvature_.positionTexels(), &curvature_.shapeTexels(), &curvature_.c23Texels(), &vertexListTexels_, &view_, &radial_,
+                &radialTexels_, &neighbourOffsetTexels_, &neighbourTexels_, &output_, &work_, &workTexels_};
             gpu::dispatchRaw(device_, cmd, radialProgram_, meshCount, rows, 1, buffers, nullptr, 0);
-            gpu::computeBarrier(cmd);
-            gpu::dispatchRaw(device_, cmd, program_, meshCount, rows, 1, buffers, nullptr, 0);
+            gpu::computeToIndirectBarrier(cmd);
+            gpu::dispatchIndirect(device_, cmd, program_, work_, 0, buffers, nullptr, 0);
             gpu::hostReadBarrier(cmd);
             gpu::timerEnd(cmd, timer_);
         });

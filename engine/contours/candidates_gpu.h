@@ -33,13 +33,18 @@ public:
 private:
     gpu::Device& device_;
     GpuCurvature& curvature_;
-    static constexpr std::uint32_t kBindings = 11; // shaders/shared.h CONTOURS_BINDING_*
+    void destroyBatchBuffers();
+
+    static constexpr std::uint32_t kBindings = 12; // shaders/shared.h CONTOURS_BINDING_*
     gpu::ComputeProgram radialProgram_, program_;
     Neighbours rings_; // one-rings on the host, for listing the vertices a view needs
-    gpu::Buffer flags_, view_, neighbourOffsets_, neighbours_, vertexList_;
-    gpu::TexelView flagTexels_, neighbourOffsetTexels_, neighbourTexels_, vertexListTexels_;
+    std::vector<std::uint32_t> flags_; // VertexFlag per vertex, sent with the vertex list
+    gpu::Buffer view_, neighbourOffsets_, neighbours_, vertexList_;
+    gpu::TexelView neighbourOffsetTexels_, neighbourTexels_, vertexListTexels_;
     gpu::Buffer radial_; // the radial word per (mesh, vertex), between the two passes
     gpu::TexelView radialTexels_;
+    gpu::Buffer work_;   // pass 2's dispatch size and the pairs pass 1 listed for it
+    gpu::TexelView workTexels_;
     gpu::Buffer output_;
     std::uint32_t capacity_ = 0;
     gpu::GpuTimer timer_;

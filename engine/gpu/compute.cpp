@@ -95,8 +95,10 @@ void destroyComputeProgram(Device& device, ComputeProgram& p)
     p = ComputeProgram{};
 }
 
-void dispatchRaw(Device& device, VkCommandBuffer cmd, const ComputeProgram& program, std::uint32_t countX, std::uint32_t countY,
-                 std::uint32_t countZ, std::initializer_list<Binding> buffers, const void* constants, std::size_t constantsSize)
+namespace {
+// Binds `program`, pushes its descriptors (one per binding) and constants.
+void bindProgram(Device& device, VkCommandBuffer cmd, const ComputeProgram& program, std::initializer_list<Binding> buffers,
+                 const void* constants, std::size_t constantsSize)
 {
     assert(buffers.size() == program.bufferCount);
     assert(constantsSize == program.pushConstantSize);
@@ -129,9 +131,22 @@ void dispatchRaw(Device& device, VkCommandBuffer cmd, const ComputeProgram& prog
                                  writes.data());
     if (constantsSize)
         vkCmdPushConstants(cmd, program.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, static_cast<std::uint32_t>(constantsSize), constants);
+}
+} // namespace
 
+void dispatchRaw(Device& device, VkCommandBuffer cmd, const ComputeProgram& program, std::uint32_t countX, std::uint32_t countY,
+                 std::uint32_t countZ, std::initializer_list<Binding> buffers, const void* constants, std::size_t constantsSize)
+{
+    bindProgram(device, cmd, program, buffers, constants, constantsSize);
     auto groups = [](std::uint32_t count, std::uint32_t local) { return (count + local - 1) / local; };
     vkCmdDispatch(cmd, groups(countX, program.localSize[0]), groups(countY, program.localSize[1]), groups(countZ, program.localSize[2]));
+}
+
+void dispatchIndirect(Device& device, VkCommandBuffer cmd, const ComputeProgram& program, const Buffer& args, VkDeviceSize offset,
+                      std::initializer_list<Binding> buffers, const void* constants, std::size_t constantsSize)
+{
+    bindProgram(device, cmd, program, buffers, constants, constantsSize);
+    vkCmdDispatchIndirect(cmd, args.buffer, offset);
 }
 
 static void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst,
@@ -148,6 +163,14 @@ void computeBarrier(VkCommandBuffer cmd)
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+}
+
+void computeToIndirectBarrier(VkCommandBuffer cmd)
+{
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                      VK_ACCESS_TRANSFER_READ_BIT);
 }
 
 void transferToComputeBarrier(VkCommandBuffer cmd)

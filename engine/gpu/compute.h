@@ -68,6 +68,13 @@ void destroyComputeProgram(Device& device, ComputeProgram& program);
 void dispatchRaw(Device& device, VkCommandBuffer cmd, const ComputeProgram& program, std::uint32_t countX, std::uint32_t countY,
                  std::uint32_t countZ, std::initializer_list<Binding> buffers, const void* constants, std::size_t constantsSize);
 
+/// As dispatchRaw, with the workgroup counts read by the device from `args` at `offset`
+/// (VkDispatchIndirectCommand: three uints), written earlier by a shader: for work whose size
+/// only the GPU knows. `args` needs VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT; put
+/// computeToIndirectBarrier between the writes and this call.
+void dispatchIndirect(Device& device, VkCommandBuffer cmd, const ComputeProgram& program, const Buffer& args, VkDeviceSize offset,
+                      std::initializer_list<Binding> buffers, const void* constants, std::size_t constantsSize);
+
 template <typename Constants>
 void dispatch(Device& device, VkCommandBuffer cmd, const ComputeProgram& program, std::uint32_t countX, std::uint32_t countY,
               std::uint32_t countZ, std::initializer_list<Binding> buffers, const Constants& constants)
@@ -78,6 +85,8 @@ void dispatch(Device& device, VkCommandBuffer cmd, const ComputeProgram& program
 
 /// Shader writes before the barrier are visible to later shader reads/writes and transfers.
 void computeBarrier(VkCommandBuffer cmd);
+/// As computeBarrier, and the writes are visible to a later dispatchIndirect's argument read.
+void computeToIndirectBarrier(VkCommandBuffer cmd);
 /// Transfer writes (fills, copies) before the barrier are visible to later shader access.
 void transferToComputeBarrier(VkCommandBuffer cmd);
 /// Shader and transfer writes are visible to the host (before a readback of mapped memory).
