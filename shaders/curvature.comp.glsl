@@ -41,8 +41,10 @@ void main()
     uint mesh = gl_GlobalInvocationID.x;
     if (mesh >= meshCount)
         return;
-    uint stride = gl_NumWorkGroups.y * gl_WorkGroupSize.y;
-    for (uint v = gl_GlobalInvocationID.y; v < vertexCount; v += stride) {
+    // One vertex per invocation (batchRows): no loop around the body, which lavapipe runs
+    // several times slower than the same code outside a loop.
+    uint v = gl_GlobalInvocationID.y;
+    if (v < vertexCount) {
         uint index = v * meshCount + mesh;
         vec3 p = loadBatch(v, mesh).xyz;
         vec3 n = normals[index].xyz;

@@ -30,9 +30,10 @@ void main()
     uint mesh = gl_GlobalInvocationID.x;
     if (mesh >= meshCount)
         return;
-    // Vertices beyond the dispatch's y extent (at most 65535 groups) are covered by striding.
-    uint stride = gl_NumWorkGroups.y * gl_WorkGroupSize.y;
-    for (uint v = gl_GlobalInvocationID.y; v < vertexCount; v += stride) {
+    // One vertex per invocation (batchRows): no loop around the body, which lavapipe runs
+    // several times slower than the same code outside a loop.
+    uint v = gl_GlobalInvocationID.y;
+    if (v < vertexCount) {
         vec3 p = position(v, mesh);
         vec3 sum = vec3(0.0);
         for (uint w = wedgeOffsets[v]; w < wedgeOffsets[v + 1]; ++w) {

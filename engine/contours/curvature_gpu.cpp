@@ -147,7 +147,7 @@ double GpuCurvature::run()
     const auto vertices = static_cast<std::uint32_t>(vertexCount_);
     const NormalsConstants normalsConstants{vertices, meshCount_, NORMALS_WEIGHT_MAX};
     const BatchConstants constants{vertices, meshCount_};
-    const std::uint32_t rows = batchRows(vertices, meshCount_, curvatureProgram_.localSize[0], curvatureProgram_.localSize[1]);
+    const std::uint32_t rows = batchRows(vertices, curvatureProgram_.localSize[1]);
     shapesOnly_ = false;
     gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
         gpu::timerStart(cmd, timer_);

@@ -63,13 +63,12 @@ void uploadWedges(gpu::Device& device, const Triangles& F, Eigen::Index vertexCo
     gpu::uploadBuffer(device, corners, w.corners.data(), corners.size);
 }
 
-std::uint32_t batchRows(std::uint32_t vertexCount, std::uint32_t meshCount, std::uint32_t groupMeshes, std::uint32_t groupVertices,
-                        std::uint32_t targetInvocations)
+std::uint32_t batchRows(std::uint32_t vertexCount, std::uint32_t groupVertices)
 {
-    const std::uint32_t columns = (meshCount + groupMeshes - 1) / groupMeshes * groupMeshes;
-    std::uint32_t rows = std::max<std::uint32_t>(groupVertices, targetInvocations / std::max<std::uint32_t>(columns, 1));
-    rows = (rows + groupVertices - 1) / groupVertices * groupVertices;
-    return std::min({rows, vertexCount, 65535u * groupVertices});
+    const std::uint64_t groups = (std::uint64_t(vertexCount) + groupVertices - 1) / groupVertices;
+    if (groups > 65535)
+        fail("a batch of ", vertexCount, " vertices needs ", groups, " workgroups along y, more than the 65535 every device has");
+    return vertexCount;
 }
 
 } // namespace facesketch

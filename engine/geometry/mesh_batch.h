@@ -28,13 +28,10 @@ std::vector<float> meshMajorPositions(const std::vector<Mesh>& meshes);
 /// `offsets` (#V + 1 uint) and `corners` (3 #F uvec2), new storage buffers owned by the caller.
 void uploadWedges(gpu::Device& device, const Triangles& F, Eigen::Index vertexCount, gpu::Buffer& offsets, gpu::Buffer& corners);
 
-/// The y extent (vertex rows) to dispatch a batch kernel with, meshes along x: the shaders stride
-/// over vertices, so fewer rows mean more vertices per invocation. Aims at `targetInvocations`
-/// in flight: plenty to fill a GPU; a CPU implementation pays a per-workgroup cost, but on
-/// lavapipe 16K to 256K invocations instead of one per vertex gained only about 10% on the
-/// contour kernel, within the noise (BENCHMARKS.md, contour engine), so callers keep the
-/// default. At most vertexCount and at least one workgroup row.
-std::uint32_t batchRows(std::uint32_t vertexCount, std::uint32_t meshCount, std::uint32_t groupMeshes, std::uint32_t groupVertices,
-                        std::uint32_t targetInvocations = 1u << 30);
+/// The y extent (vertex rows) to dispatch a batch kernel with, meshes along x: one invocation
+/// per (mesh, vertex), so `vertexCount`. The kernels do not loop over vertices: on lavapipe a
+/// grid-stride loop around the body made the contour kernels twice as slow (BENCHMARKS.md).
+/// Throws Error when the rows need more than the 65535 workgroups every device has along y.
+std::uint32_t batchRows(std::uint32_t vertexCount, std::uint32_t groupVertices);
 
 } // namespace facesketch

@@ -72,7 +72,7 @@ double GpuNormals::run()
     gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
         gpu::timerStart(cmd, timer_);
         // Meshes along x, vertices along y; the shader strides over the remaining vertices.
-        const auto rows = batchRows(constants.vertexCount, constants.meshCount, program_.localSize[0], program_.localSize[1]);
+        const auto rows = batchRows(constants.vertexCount, program_.localSize[1]);
         gpu::dispatch(device_, cmd, program_, constants.meshCount, rows, 1,
                       {&positions_, &wedgeOffsets_, &wedges_, &normals_}, constants);
         gpu::hostReadBarrier(cmd);
