@@ -9,10 +9,10 @@
 
 layout(local_size_x = BATCH_GROUP_MESHES, local_size_y = BATCH_GROUP_VERTICES, local_size_z = 1) in;
 
-layout(binding = CURVATURE_BINDING_POSITIONS, std430) restrict readonly buffer Positions { vec4 positions[]; };
-layout(binding = CURVATURE_BINDING_WEDGE_OFFSETS, std430) restrict readonly buffer WedgeOffsets { uint wedgeOffsets[]; };
-layout(binding = CURVATURE_BINDING_WEDGES, std430) restrict readonly buffer Wedges { uvec2 wedges[]; };
-layout(binding = CURVATURE_BINDING_NORMALS, std430) restrict readonly buffer Normals { vec4 normals[]; };
+layout(binding = CURVATURE_BINDING_POSITIONS) uniform samplerBuffer positions; // (T) RGBA32F
+layout(binding = CURVATURE_BINDING_WEDGE_OFFSETS) uniform usamplerBuffer wedgeOffsets; // (T) R32UI
+layout(binding = CURVATURE_BINDING_WEDGES) uniform usamplerBuffer wedges; // (T) RG32UI
+layout(binding = CURVATURE_BINDING_NORMALS) uniform samplerBuffer normals; // (T) RGBA32F
 layout(binding = CURVATURE_BINDING_CURVATURE, std430) restrict writeonly buffer Curvatures { vec4 curvatures[]; }; // k1, k2, area, 0
 layout(binding = CURVATURE_BINDING_DIRECTIONS, std430) restrict writeonly buffer Directions { vec4 directions[]; }; // dir1, 0
 
@@ -47,14 +47,14 @@ void main()
     if (v < vertexCount) {
         uint index = v * meshCount + mesh;
         vec3 p = loadBatch(v, mesh).xyz;
-        vec3 n = normals[index].xyz;
-        uint first = wedgeOffsets[v], last = wedgeOffsets[v + 1];
+        vec3 n = texelFetch(normals, int(index)).xyz;
+        uint first = texelFetch(wedgeOffsets, int(v)).x, last = texelFetch(wedgeOffsets, int(v + 1)).x;
         vec3 tensor = vec3(0.0);
         float area = 0.0;
         vec3 pdir1 = vec3(0.0), pdir2 = vec3(0.0);
         bool frame = false;
         if (first < last && length(n) > 0.0) {
-            vec3 edge = loadBatch(wedges[first].x, mesh).xyz - p;
+            vec3 edge = loadBatch(texelFetch(wedges, int(first)).x, mesh).xyz - p;
             vec3 tangent = edge - dot(edge, n) * n;
             if (length(tangent) > 0.0) {
                 pdir1 = normalize(tangent);
@@ -63,9 +63,9 @@ void main()
             }
         }
         for (uint w = first; frame && w < last; ++w) {
-            uvec2 bc = wedges[w];
+            uvec2 bc = texelFetch(wedges, int(w)).xy;
             vec3 pb = loadBatch(bc.x, mesh).xyz, pc = loadBatch(bc.y, mesh).xyz;
-            vec3 nb = normals[bc.x * meshCount + mesh].xyz, nc = normals[bc.y * meshCount + mesh].xyz;
+            vec3 nb = texelFetch(normals, int(bc.x * meshCount + mesh)).xyz, nc = texelFetch(normals, int(bc.y * meshCount + mesh)).xyz;
             // Corners (v, b, c); edges opposite each.
             vec3 e0 = pc - pb, e1 = p - pc, e2 = pb - p;
             vec3 fn = cross(e0, e1);

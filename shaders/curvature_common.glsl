@@ -3,7 +3,7 @@
 
 vec4 loadBatch(uint v, uint mesh)
 {
-    return positions[v * meshCount + mesh];
+    return texelFetch(positions, int(v * meshCount + mesh));
 }
 
 // Smallest rotation of the frame (u, v) that takes its normal u x v to n.

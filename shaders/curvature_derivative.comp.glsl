@@ -10,12 +10,12 @@
 
 layout(local_size_x = BATCH_GROUP_MESHES, local_size_y = BATCH_GROUP_VERTICES, local_size_z = 1) in;
 
-layout(binding = DCURV_BINDING_POSITIONS, std430) restrict readonly buffer Positions { vec4 positions[]; };
-layout(binding = DCURV_BINDING_WEDGE_OFFSETS, std430) restrict readonly buffer WedgeOffsets { uint wedgeOffsets[]; };
-layout(binding = DCURV_BINDING_WEDGES, std430) restrict readonly buffer Wedges { uvec2 wedges[]; };
-layout(binding = DCURV_BINDING_NORMALS, std430) restrict readonly buffer Normals { vec4 normals[]; };
-layout(binding = DCURV_BINDING_CURVATURE, std430) restrict readonly buffer Curvatures { vec4 curvatures[]; };
-layout(binding = DCURV_BINDING_DIRECTIONS, std430) restrict readonly buffer Directions { vec4 directions[]; };
+layout(binding = DCURV_BINDING_POSITIONS) uniform samplerBuffer positions; // (T) RGBA32F
+layout(binding = DCURV_BINDING_WEDGE_OFFSETS) uniform usamplerBuffer wedgeOffsets; // (T) R32UI
+layout(binding = DCURV_BINDING_WEDGES) uniform usamplerBuffer wedges; // (T) RG32UI
+layout(binding = DCURV_BINDING_NORMALS) uniform samplerBuffer normals; // (T) RGBA32F
+layout(binding = DCURV_BINDING_CURVATURE) uniform samplerBuffer curvatures; // (T) RGBA32F
+layout(binding = DCURV_BINDING_DIRECTIONS) uniform samplerBuffer directions; // (T) RGBA32F
 layout(binding = DCURV_BINDING_DERIVATIVE, std430) restrict writeonly buffer Derivatives { vec4 derivatives[]; };
 layout(binding = DCURV_BINDING_SHAPE, std430) restrict writeonly buffer Shapes { uvec4 shapes[]; };
 layout(binding = DCURV_BINDING_SHAPE_C23, std430) restrict writeonly buffer ShapesC23 { uint shapesC23[]; };
@@ -32,9 +32,9 @@ layout(push_constant) uniform Constants {
 vec3 vertexTensorIn(uint v, vec3 t, vec3 b)
 {
     uint index = v * meshCount + gl_GlobalInvocationID.x;
-    vec3 n = normals[index].xyz;
-    vec3 d1 = directions[index].xyz;
-    vec4 k = curvatures[index];
+    vec3 n = texelFetch(normals, int(index)).xyz;
+    vec3 d1 = texelFetch(directions, int(index)).xyz;
+    vec4 k = texelFetch(curvatures, int(index));
     return projectTensor(d1, cross(n, d1), vec3(k.x, 0.0, k.y), t, b);
 }
 
@@ -97,15 +97,15 @@ void main()
     uint v = gl_GlobalInvocationID.y;
     if (v < vertexCount) {
         uint index = v * meshCount + mesh;
-        vec4 k = curvatures[index];
+        vec4 k = texelFetch(curvatures, int(index));
         float area = k.z;
-        vec3 n = normals[index].xyz;
-        vec3 d1 = directions[index].xyz;
+        vec3 n = texelFetch(normals, int(index)).xyz;
+        vec3 d1 = texelFetch(directions, int(index)).xyz;
         vec3 d2 = cross(n, d1);
         vec3 p = loadBatch(v, mesh).xyz;
         vec4 sum = vec4(0.0);
-        for (uint w = wedgeOffsets[v]; area > 0.0 && w < wedgeOffsets[v + 1]; ++w) {
-            uvec2 bc = wedges[w];
+        for (uint w = texelFetch(wedgeOffsets, int(v)).x; area > 0.0 && w < texelFetch(wedgeOffsets, int(v + 1)).x; ++w) {
+            uvec2 bc = texelFetch(wedges, int(w)).xy;
             vec3 pb = loadBatch(bc.x, mesh).xyz, pc = loadBatch(bc.y, mesh).xyz;
             vec3 e0 = pc - pb, e1 = p - pc, e2 = pb - p;
             vec3 fn = cross(e0, e1);

@@ -9,9 +9,9 @@
 
 layout(local_size_x = BATCH_GROUP_MESHES, local_size_y = BATCH_GROUP_VERTICES, local_size_z = 1) in;
 
-layout(binding = NORMALS_BINDING_POSITIONS, std430) restrict readonly buffer Positions { vec4 positions[]; };
-layout(binding = NORMALS_BINDING_WEDGE_OFFSETS, std430) restrict readonly buffer WedgeOffsets { uint wedgeOffsets[]; };
-layout(binding = NORMALS_BINDING_WEDGES, std430) restrict readonly buffer Wedges { uvec2 wedges[]; };
+layout(binding = NORMALS_BINDING_POSITIONS) uniform samplerBuffer positions; // (T) RGBA32F
+layout(binding = NORMALS_BINDING_WEDGE_OFFSETS) uniform usamplerBuffer wedgeOffsets; // (T) R32UI
+layout(binding = NORMALS_BINDING_WEDGES) uniform usamplerBuffer wedges; // (T) RG32UI
 layout(binding = NORMALS_BINDING_NORMALS, std430) restrict writeonly buffer Normals { vec4 normals[]; };
 
 layout(push_constant) uniform Constants {
@@ -22,7 +22,7 @@ layout(push_constant) uniform Constants {
 
 vec3 position(uint v, uint mesh)
 {
-    return positions[v * meshCount + mesh].xyz;
+    return texelFetch(positions, int(v * meshCount + mesh)).xyz;
 }
 
 void main()
@@ -36,8 +36,8 @@ void main()
     if (v < vertexCount) {
         vec3 p = position(v, mesh);
         vec3 sum = vec3(0.0);
-        for (uint w = wedgeOffsets[v]; w < wedgeOffsets[v + 1]; ++w) {
-            uvec2 bc = wedges[w];
+        for (uint w = texelFetch(wedgeOffsets, int(v)).x; w < texelFetch(wedgeOffsets, int(v + 1)).x; ++w) {
+            uvec2 bc = texelFetch(wedges, int(w)).xy;
             vec3 a = position(bc.x, mesh) - p, b = position(bc.y, mesh) - p;
             float weight = 1.0;
             if (weighting == NORMALS_WEIGHT_MAX) {

@@ -11,28 +11,31 @@
 #define BATCH_GROUP_VERTICES 8  // invocations along vertices (y)
 
 // normals.comp: area-weighted vertex normals for a batch of meshes sharing one topology.
-#define NORMALS_BINDING_POSITIONS 0     // float, batch layout
-#define NORMALS_BINDING_WEDGE_OFFSETS 1 // uint[vertexCount + 1], CSR offsets into wedges
-#define NORMALS_BINDING_WEDGES 2        // uvec2[]: the other two corners of each incident triangle, in winding order
+#define NORMALS_BINDING_POSITIONS 0     // (T) RGBA32F, batch layout
+#define NORMALS_BINDING_WEDGE_OFFSETS 1 // (T) R32UI [vertexCount + 1], CSR offsets into wedges
+#define NORMALS_BINDING_WEDGES 2        // (T) RG32UI: the other two corners of each incident triangle, in winding order
 #define NORMALS_BINDING_NORMALS 3       // float, batch layout; unit length or zero
 #define NORMALS_WEIGHT_AREA 0           // each triangle weighted by its area
 #define NORMALS_WEIGHT_MAX 1            // Max 1999: each corner by 1 / (|e1|^2 |e2|^2), exact on spheres
+#define NORMALS_TEXEL_BINDINGS 0x7u     // bits of the (T) bindings: read-only data as texel buffers (gpu::TexelView)
 
 // curvature.comp: principal curvatures and directions (Rusinkiewicz 2004), batch layout.
-#define CURVATURE_BINDING_POSITIONS 0
-#define CURVATURE_BINDING_WEDGE_OFFSETS 1
-#define CURVATURE_BINDING_WEDGES 2
-#define CURVATURE_BINDING_NORMALS 3     // Max-weighted normals (normals.comp, NORMALS_WEIGHT_MAX)
+#define CURVATURE_BINDING_POSITIONS 0   // (T), as in normals.comp
+#define CURVATURE_BINDING_WEDGE_OFFSETS 1 // (T)
+#define CURVATURE_BINDING_WEDGES 2      // (T)
+#define CURVATURE_BINDING_NORMALS 3     // (T) RGBA32F: Max-weighted normals (normals.comp, NORMALS_WEIGHT_MAX)
 #define CURVATURE_BINDING_CURVATURE 4   // out: k1, k2 (1/mm, k1 >= k2, convex positive), Voronoi area, 0
 #define CURVATURE_BINDING_DIRECTIONS 5  // out: dir1 (unit, tangent), 0; dir2 = normal x dir1
+#define CURVATURE_TEXEL_BINDINGS 0xFu
 
 // curvature_derivative.comp: derivative of curvature, after curvature.comp.
-#define DCURV_BINDING_POSITIONS 0
+#define DCURV_BINDING_POSITIONS 0       // (T) inputs 0-5, as in curvature.comp
 #define DCURV_BINDING_WEDGE_OFFSETS 1
 #define DCURV_BINDING_WEDGES 2
 #define DCURV_BINDING_NORMALS 3
 #define DCURV_BINDING_CURVATURE 4
 #define DCURV_BINDING_DIRECTIONS 5
+#define DCURV_TEXEL_BINDINGS 0x3Fu
 #define DCURV_BINDING_DERIVATIVE 6      // out: C111, C112, C122, C222 in the (dir1, dir2) frame
 #define DCURV_BINDING_SHAPE 7           // out: uvec4 packed for the contour tests (below), 0 where undefined
 #define DCURV_BINDING_SHAPE_C23 8       // out: uint, packHalf2x16(C122, C222)

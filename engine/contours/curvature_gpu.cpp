@@ -70,10 +70,14 @@ GpuCurvature::GpuCurvature(gpu::Device& device, const Triangles& F, Eigen::Index
 {
     if (vertexCount <= 0 || F.rows() == 0)
         fail("GpuCurvature: need at least one vertex and one triangle (got ", vertexCount, " and ", F.rows(), ")");
-    normalsProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(normals_comp), 4, sizeof(NormalsConstants));
-    curvatureProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(curvature_comp), 6, sizeof(BatchConstants));
-    derivativeProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(curvature_derivative_comp), 9, sizeof(BatchConstants));
+    normalsProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(normals_comp), 4, sizeof(NormalsConstants), 0,
+                                                NORMALS_TEXEL_BINDINGS);
+    curvatureProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(curvature_comp), 6, sizeof(BatchConstants), 0,
+                                                  CURVATURE_TEXEL_BINDINGS);
+    derivativeProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(curvature_derivative_comp), 9, sizeof(BatchConstants), 0,
+                                                   DCURV_TEXEL_BINDINGS);
     uploadWedges(device_, F, vertexCount, wedgeOffsets_, wedges_);
+    wedgeTexels_ = createWedgeTexels(device_, wedgeOffsets_, wedges_);
     hostWedges_ = buildWedges(F, vertexCount);
     timer_ = gpu::createGpuTimer(device_);
 }
@@ -83,6 +87,7 @@ GpuCurvature::~GpuCurvature()
     vkDeviceWaitIdle(device_.device);
     gpu::destroyGpuTimer(device_, timer_);
     destroyBatchBuffers();
+    destroyWedgeTexels(device_, wedgeTexels_);
     gpu::destroyBuffer(device_, wedges_);
     gpu::destroyBuffer(device_, wedgeOffsets_);
     gpu::destroyComputeProgram(device_, derivativeProgram_);
@@ -92,7 +97,7 @@ GpuCurvature::~GpuCurvature()
 
 void GpuCurvature::destroyBatchBuffers()
 {
-    for (gpu::TexelView* t : {&c23Texels_, &shapeTexels_, &positionTexels_})
+    for (gpu::TexelView* t : {&c23Texels_, &shapeTexels_, &directionTexels_, &curvatureTexels_, &normalTexels_, &positionTexels_})
         if (t->view)
             gpu::destroyTexelView(device_, *t);
     for (gpu::Buffer* b : {&shapesC23_, &shapes_, &derivatives_, &directions_, &curvature_, &normals_, &positions_})
@@ -119,6 +124,9 @@ void GpuCurvature::setPositions(const std::vector<float>& positions)
             *b = gpu::createBuffer(device_, bytes, usage);
         shapesC23_ = gpu::createBuffer(device_, bytes / 4, usage);
         positionTexels_ = gpu::createTexelView(device_, positions_, VK_FORMAT_R32G32B32A32_SFLOAT, 16);
+        normalTexels_ = gpu::createTexelView(device_, normals_, VK_FORMAT_R32G32B32A32_SFLOAT, 16);
+        curvatureTexels_ = gpu::createTexelView(device_, curvature_, VK_FORMAT_R32G32B32A32_SFLOAT, 16);
+        directionTexels_ = gpu::createTexelView(device_, directions_, VK_FORMAT_R32G32B32A32_SFLOAT, 16);
         shapeTexels_ = gpu::createTexelView(device_, shapes_, VK_FORMAT_R32G32B32A32_UINT, 16);
         c23Texels_ = gpu::createTexelView(device_, shapesC23_, VK_FORMAT_R32_UINT, 4);
     }
@@ -151,14 +159,16 @@ double GpuCurvature::run()
     shapesOnly_ = false;
     gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
         gpu::timerStart(cmd, timer_);
-        gpu::dispatch(device_, cmd, normalsProgram_, meshCount_, rows, 1, {&positions_, &wedgeOffsets_, &wedges_, &normals_},
+        const WedgeTexels& w = wedgeTexels_;
+        gpu::dispatch(device_, cmd, normalsProgram_, meshCount_, rows, 1, {&positionTexels_, &w.offsets, &w.corners, &normals_},
                       normalsConstants);
         gpu::computeBarrier(cmd);
         gpu::dispatch(device_, cmd, curvatureProgram_, meshCount_, rows, 1,
-                      {&positions_, &wedgeOffsets_, &wedges_, &normals_, &curvature_, &directions_}, constants);
+                      {&positionTexels_, &w.offsets, &w.corners, &normalTexels_, &curvature_, &directions_}, constants);
         gpu::computeBarrier(cmd);
         gpu::dispatch(device_, cmd, derivativeProgram_, meshCount_, rows, 1,
-                      {&positions_, &wedgeOffsets_, &wedges_, &normals_, &curvature_, &directions_, &derivatives_, &shapes_, &shapesC23_},
+                      {&positionTexels_, &w.offsets, &w.corners, &normalTexels_, &curvatureTexels_, &directionTexels_, &derivatives_,
+                       &shapes_, &shapesC23_},
                       constants);
         gpu::hostReadBarrier(cmd);
         gpu::timerEnd(cmd, timer_);

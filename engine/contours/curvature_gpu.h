@@ -11,6 +11,7 @@
 //   GpuCurvature::Result r = curvature.download();
 
 #include "core/mesh.h"
+#include "geometry/mesh_batch.h"
 #include "geometry/wedges.h"
 #include "gpu/buffers.h"
 #include "gpu/compute.h"
@@ -98,8 +99,9 @@ private:
     Wedges hostWedges_;
     std::vector<std::array<double, 4>> vertexBounds_;
     gpu::Buffer wedgeOffsets_, wedges_;
+    WedgeTexels wedgeTexels_;
     gpu::Buffer positions_, normals_, curvature_, directions_, derivatives_, shapes_, shapesC23_;
-    gpu::TexelView positionTexels_, shapeTexels_, c23Texels_;
+    gpu::TexelView positionTexels_, normalTexels_, curvatureTexels_, directionTexels_, shapeTexels_, c23Texels_;
     gpu::GpuTimer timer_;
 };
 

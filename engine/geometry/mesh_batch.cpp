@@ -57,10 +57,23 @@ std::vector<float> meshMajorPositions(const std::vector<Mesh>& meshes)
 void uploadWedges(gpu::Device& device, const Triangles& F, Eigen::Index vertexCount, gpu::Buffer& offsets, gpu::Buffer& corners)
 {
     const Wedges w = buildWedges(F, vertexCount);
-    offsets = gpu::createBuffer(device, w.offsets.size() * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    corners = gpu::createBuffer(device, w.corners.size() * sizeof(w.corners[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+    offsets = gpu::createBuffer(device, w.offsets.size() * sizeof(std::uint32_t), usage);
+    corners = gpu::createBuffer(device, w.corners.size() * sizeof(w.corners[0]), usage);
     gpu::uploadBuffer(device, offsets, w.offsets.data(), offsets.size);
     gpu::uploadBuffer(device, corners, w.corners.data(), corners.size);
+}
+
+WedgeTexels createWedgeTexels(gpu::Device& device, const gpu::Buffer& offsets, const gpu::Buffer& corners)
+{
+    return {gpu::createTexelView(device, offsets, VK_FORMAT_R32_UINT, sizeof(std::uint32_t)),
+            gpu::createTexelView(device, corners, VK_FORMAT_R32G32_UINT, 2 * sizeof(std::uint32_t))};
+}
+
+void destroyWedgeTexels(gpu::Device& device, WedgeTexels& texels)
+{
+    gpu::destroyTexelView(device, texels.corners);
+    gpu::destroyTexelView(device, texels.offsets);
 }
 
 std::uint32_t batchRows(std::uint32_t vertexCount, std::uint32_t groupVertices)

@@ -25,8 +25,17 @@ std::vector<float> fromBatchLayout(const std::vector<float>& batch, std::size_t 
 std::vector<float> meshMajorPositions(const std::vector<Mesh>& meshes);
 
 /// Uploads the wedges of F (geometry/wedges.h) that every batch kernel gathers over:
-/// `offsets` (#V + 1 uint) and `corners` (3 #F uvec2), new storage buffers owned by the caller.
+/// `offsets` (#V + 1 uint) and `corners` (3 #F uvec2), new buffers owned by the caller, usable
+/// as storage and as texel buffers.
 void uploadWedges(gpu::Device& device, const Triangles& F, Eigen::Index vertexCount, gpu::Buffer& offsets, gpu::Buffer& corners);
+
+/// Texel views of the wedge buffers (R32UI offsets, RG32UI corners), which the kernels read as
+/// texel buffers (gpu::TexelView); destroy before the buffers.
+struct WedgeTexels {
+    gpu::TexelView offsets, corners;
+};
+WedgeTexels createWedgeTexels(gpu::Device& device, const gpu::Buffer& offsets, const gpu::Buffer& corners);
+void destroyWedgeTexels(gpu::Device& device, WedgeTexels& texels);
 
 /// The y extent (vertex rows) to dispatch a batch kernel with, meshes along x: one invocation
 /// per (mesh, vertex), so `vertexCount`. The kernels do not loop over vertices: on lavapipe a

@@ -23,8 +23,9 @@ GpuNormals::GpuNormals(gpu::Device& device, const Triangles& F, Eigen::Index ver
 {
     if (vertexCount <= 0 || F.rows() == 0)
         fail("GpuNormals: need at least one vertex and one triangle (got ", vertexCount, " and ", F.rows(), ")");
-    program_ = gpu::createComputeProgram(device_, gpu::shaderCode(normals_comp), 4, sizeof(NormalsConstants));
+    program_ = gpu::createComputeProgram(device_, gpu::shaderCode(normals_comp), 4, sizeof(NormalsConstants), 0, NORMALS_TEXEL_BINDINGS);
     uploadWedges(device_, F, vertexCount, wedgeOffsets_, wedges_);
+    wedgeTexels_ = createWedgeTexels(device_, wedgeOffsets_, wedges_);
     timer_ = gpu::createGpuTimer(device_);
 }
 
@@ -34,8 +35,11 @@ GpuNormals::~GpuNormals()
     gpu::destroyGpuTimer(device_, timer_);
     if (normals_.buffer)
         gpu::destroyBuffer(device_, normals_);
-    if (positions_.buffer)
+    if (positions_.buffer) {
+        gpu::destroyTexelView(device_, positionTexels_);
         gpu::destroyBuffer(device_, positions_);
+    }
+    destroyWedgeTexels(device_, wedgeTexels_);
     gpu::destroyBuffer(device_, wedges_);
     gpu::destroyBuffer(device_, wedgeOffsets_);
     gpu::destroyComputeProgram(device_, program_);
@@ -53,10 +57,12 @@ void GpuNormals::setPositions(const std::vector<float>& positions)
     if (!positions_.buffer || positions_.size < bytes) {
         vkDeviceWaitIdle(device_.device);
         if (positions_.buffer) {
+            gpu::destroyTexelView(device_, positionTexels_);
             gpu::destroyBuffer(device_, positions_);
             gpu::destroyBuffer(device_, normals_);
         }
-        positions_ = gpu::createBuffer(device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        positions_ = gpu::createBuffer(device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+        positionTexels_ = gpu::createTexelView(device_, positions_, VK_FORMAT_R32G32B32A32_SFLOAT, 4 * sizeof(float));
         normals_ = gpu::createBuffer(device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     }
     meshCount_ = static_cast<std::uint32_t>(positions.size() / stride);
@@ -71,10 +77,10 @@ double GpuNormals::run()
     const NormalsConstants constants{static_cast<std::uint32_t>(vertexCount_), meshCount_, NORMALS_WEIGHT_AREA};
     gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
         gpu::timerStart(cmd, timer_);
-        // Meshes along x, vertices along y; the shader strides over the remaining vertices.
+        // Meshes along x, vertices along y, one (mesh, vertex) per invocation.
         const auto rows = batchRows(constants.vertexCount, program_.localSize[1]);
         gpu::dispatch(device_, cmd, program_, constants.meshCount, rows, 1,
-                      {&positions_, &wedgeOffsets_, &wedges_, &normals_}, constants);
+                      {&positionTexels_, &wedgeTexels_.offsets, &wedgeTexels_.corners, &normals_}, constants);
         gpu::hostReadBarrier(cmd);
         gpu::timerEnd(cmd, timer_);
     });

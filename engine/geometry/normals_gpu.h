@@ -11,6 +11,7 @@
 #include "core/mesh.h"
 #include "gpu/buffers.h"
 #include "gpu/compute.h"
+#include "geometry/mesh_batch.h"
 #include "gpu/timer.h"
 
 #include <vector>
@@ -39,6 +40,8 @@ private:
     std::uint32_t meshCount_ = 0;
     gpu::ComputeProgram program_;
     gpu::Buffer wedgeOffsets_, wedges_, positions_, normals_;
+    WedgeTexels wedgeTexels_;
+    gpu::TexelView positionTexels_; // of positions_, which may be larger than the batch (reused)
     gpu::GpuTimer timer_;
 };
 
