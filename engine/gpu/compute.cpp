@@ -102,16 +102,21 @@ void bindProgram(Device& device, VkCommandBuffer cmd, const ComputeProgram& prog
 {
     assert(buffers.size() == program.bufferCount);
     assert(constantsSize == program.pushConstantSize);
+    std::uint32_t i = 0;
+    for (const Binding& b : buffers) { // before anything is recorded
+        const bool texel = (program.texelMask >> i) & 1u;
+        if (texel ? !b.texel : !b.buffer)
+            fail("dispatch: binding ", i, texel ? " needs a texel view" : " needs a buffer");
+        ++i;
+    }
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, program.pipeline);
 
     std::vector<VkDescriptorBufferInfo> infos(buffers.size());
     std::vector<VkBufferView> views(buffers.size());
     std::vector<VkWriteDescriptorSet> writes;
-    std::uint32_t i = 0;
+    i = 0;
     for (const Binding& b : buffers) {
         const bool texel = (program.texelMask >> i) & 1u;
-        if (texel != (b.texel != nullptr))
-            fail("dispatch: binding ", i, texel ? " needs a texel view" : " needs a buffer");
         auto w = makeStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
         w.dstBinding = i;
         w.descriptorCount = 1;

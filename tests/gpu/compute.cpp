@@ -1,4 +1,5 @@
 #include "core/error.h"
+#include "gpu/buffers.h"
 #include "gpu/compute.h"
 #include "shaders/normals_comp.h"
 #include "shaders/shared.h"
@@ -25,8 +26,48 @@ TEST_CASE("compute: garbage is not mistaken for SPIR-V")
 TEST_CASE("compute: a program builds and tears down cleanly under validation")
 {
     gpu::Device& d = test::device();
-    gpu::ComputeProgram p = gpu::createComputeProgram(d, gpu::shaderCode(normals_comp), 4, 16);
+    gpu::ComputeProgram p = gpu::createComputeProgram(d, gpu::shaderCode(normals_comp), 4, 16, 0, NORMALS_TEXEL_BINDINGS);
     REQUIRE(p.pipeline != VK_NULL_HANDLE);
     gpu::destroyComputeProgram(d, p);
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("compute: a binding of the wrong kind is an error naming it, raised before anything is recorded")
+{
+    gpu::Device& d = test::device();
+    gpu::ComputeProgram p = gpu::createComputeProgram(d, gpu::shaderCode(normals_comp), 4, 16, 0, NORMALS_TEXEL_BINDINGS);
+    gpu::Buffer buffer = gpu::createBuffer(d, 64, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    gpu::TexelView view = gpu::createTexelView(d, buffer, VK_FORMAT_R32_UINT, 4);
+    REQUIRE(view.elements == 16);
+    const std::uint32_t constants[4] = {1, 1, 0, 0};
+    VkCommandBuffer cmd = gpu::beginOneShot(d);
+    REQUIRE_THROWS_WITH(gpu::dispatchRaw(d, cmd, p, 1, 1, 1, {&buffer, &view, &view, &buffer}, constants, sizeof(constants)),
+                        Catch::Contains("binding 0 needs a texel view"));
+    REQUIRE_THROWS_WITH(gpu::dispatchRaw(d, cmd, p, 1, 1, 1, {&view, &view, &view, &view}, constants, sizeof(constants)),
+                        Catch::Contains("binding 3 needs a buffer"));
+    gpu::endOneShotAndWait(d, cmd); // nothing was recorded: an empty submission
+    gpu::destroyTexelView(d, view);
+    gpu::destroyBuffer(d, buffer);
+    gpu::destroyComputeProgram(d, p);
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("compute: uniform and texel masks that overlap are refused")
+{
+    gpu::Device& d = test::device();
+    REQUIRE_THROWS_WITH(gpu::createComputeProgram(d, gpu::shaderCode(normals_comp), 4, 16, 1u, NORMALS_TEXEL_BINDINGS),
+                        Catch::Contains("both uniform and texel"));
+}
+
+TEST_CASE("buffers: a texel view must cover whole texels")
+{
+    gpu::Device& d = test::device();
+    gpu::Buffer buffer = gpu::createBuffer(d, 20, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    REQUIRE_THROWS_WITH(gpu::createTexelView(d, buffer, VK_FORMAT_R32G32B32A32_UINT, 16),
+                        Catch::Contains("20 bytes is not a whole number of 16-byte texels"));
+    gpu::TexelView view = gpu::createTexelView(d, buffer, VK_FORMAT_R32_UINT, 4);
+    REQUIRE(view.elements == 5);
+    gpu::destroyTexelView(d, view);
+    gpu::destroyBuffer(d, buffer);
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
