@@ -1,12 +1,16 @@
 #pragma once
 // The candidate cloud on the GPU (thesis 4.4): the per-view contour tests of
 // contours/candidates.h for every face whose curvature a GpuCurvature holds, appended to one
-// compact list with an atomic counter, then sorted by (mesh, vertex) on the host so that the
-// result does not depend on GPU scheduling. Two dispatches (shaders/shared.h explains why):
-// radial curvature and the per-vertex tests, then the one-ring zero-crossing test and append.
-// Both visit only the vertices that some face may show inside the culling rectangle and sphere
-// (from per-vertex bounding spheres over the batch) and their one-rings: a stroke's box costs
-// a fraction of a whole view.
+// compact list with an atomic counter, then put in (mesh, vertex) order on the host (a counting
+// sort) so that the result does not depend on GPU scheduling. Two dispatches (shaders/shared.h
+// explains the choices): pass 1 computes every pair's radial curvature and own tests and lists
+// the pairs that passed one (about a quarter); pass 2, dispatched indirectly at that size, runs
+// the one-ring zero-crossing test, culls to the rectangle and sphere and appends. Pass 1 visits
+// only the vertices that some face may show inside the culling rectangle and sphere (from
+// per-vertex bounding spheres over the batch) and their one-rings: a stroke's box costs a
+// fraction of a whole view.
+// Needs subgroup ballot in compute shaders (every desktop GPU and lavapipe have it) and texel
+// buffers of #faces x #V texels (maxTexelBufferElements); throws Error naming what is missing.
 //
 //   GpuCandidates cloud(device, curvature, flags);           // once per dataset
 //   std::vector<Candidate> c = cloud.build(camera, params);  // per view change or stroke
