@@ -1,5 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_ballot : require
 // Pass 2 of the per-view contour tests (engine/contours/candidates.h): for every (mesh, vertex)
 // that pass 1 (contours_radial.comp.glsl) listed as having passed a test, the suggestive
 // zero-crossing test against its one-ring's radial words, culling to the view's rectangle and
@@ -56,9 +57,15 @@ void main()
     vec3 pixel = project(p);
     bool inside = pixel.x >= rect.x && pixel.x <= rect.z && pixel.y >= rect.y && pixel.y <= rect.w &&
                   length(p - sphere.xyz) <= sphere.w;
-    if (types == 0u || !inside)
-        return;
-    uint at = atomicAdd(count, 1u);
-    if (at < counts.z)
+    // Append with one atomic per subgroup rather than one per candidate: every core's
+    // candidates go through this one counter.
+    bool append = types != 0u && inside;
+    uvec4 ballot = subgroupBallot(append);
+    uint appended = subgroupBallotBitCount(ballot);
+    uint base = 0u;
+    if (subgroupElect() && appended > 0u)
+        base = atomicAdd(count, appended);
+    uint at = subgroupBroadcastFirst(base) + subgroupBallotExclusiveBitCount(ballot);
+    if (append && at < counts.z)
         candidates[at] = Candidate(uvec4(mesh, v, types, 0u), vec4(p, pixel.z), vec4(pixel.xy, 0.0, 0.0));
 }

@@ -221,9 +221,9 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
     }
     gpu::uploadBuffer(device_, vertexList_, entries.data(), entries.size() * sizeof(std::uint32_t));
     const auto listCount = static_cast<std::uint32_t>(list.size());
-    const std::uint64_t groupsY = (listCount + program_.localSize[1] - 1) / program_.localSize[1];
+    const std::uint64_t groupsY = (listCount + radialProgram_.localSize[1] - 1) / radialProgram_.localSize[1];
     if (groupsY > device_.properties.limits.maxComputeWorkGroupCount[1])
-        fail("GpuCandidates::build: ", listCount, " vertices need ", groupsY, " workgroups, more than this device's limit of ",
+        fail("GpuCandidates::build: ", listCount, " vertices need ", groupsY, " workgroups in pass 1, more than this device's limit of ",
              device_.properties.limits.maxComputeWorkGroupCount[1]);
 
     if (capacity_ == 0) {
