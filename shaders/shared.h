@@ -56,7 +56,8 @@
 // - every storage-buffer access at a per-invocation address is a scalar loop over the 8 lanes
 //   of a SIMD row, and it runs (masked) even where no lane takes the branch around it, so the
 //   kernels keep few of them: large read-only data are texel buffers (one vector gather per
-//   row), pass 1 writes a single word per (mesh, vertex), and only the append stores;
+//   row), pass 1 writes a single word per (mesh, vertex) and lists pairs with one atomic per
+//   subgroup, and pass 2 stores only what it appends, also with one atomic per subgroup;
 // - a branch is run for every lane of a row when any lane takes it, so every lane does the
 //   same work in pass 1 and the neighbour loop of pass 2 has a trip count of zero where the
 //   vertex failed the pre-test;

@@ -128,8 +128,7 @@ GpuCandidates::GpuCandidates(gpu::Device& device, GpuCurvature& curvature, const
         buffer = gpu::createBuffer(device_, count * words * sizeof(std::uint32_t), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
         if (data)
             gpu::uploadBuffer(device_, buffer, data, buffer.size);
-        view = gpu::createTexelView(device_, buffer, words == 2 ? VK_FORMAT_R32G32_UINT : VK_FORMAT_R32_UINT,
-                                    words * sizeof(std::uint32_t));
+        view = gpu::createTexelView(device_, buffer, words == 2 ? VK_FORMAT_R32G32_UINT : VK_FORMAT_R32_UINT);
     };
     table(vertexList_, vertexListTexels_, nullptr, nv, 2);
     table(neighbourOffsets_, neighbourOffsetTexels_, rings_.offsets.data(), rings_.offsets.size(), 1);
@@ -181,10 +180,10 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
         destroyBatchBuffers();
         const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
         radial_ = gpu::createBuffer(device_, perVertex, usage);
-        radialTexels_ = gpu::createTexelView(device_, radial_, VK_FORMAT_R32_UINT, sizeof(std::uint32_t));
+        radialTexels_ = gpu::createTexelView(device_, radial_, VK_FORMAT_R32_UINT);
         work_ = gpu::createBuffer(device_, CONTOURS_WORK_HEADER * sizeof(std::uint32_t) + perVertex,
                                   usage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
-        workTexels_ = gpu::createTexelView(device_, work_, VK_FORMAT_R32_UINT, sizeof(std::uint32_t));
+        workTexels_ = gpu::createTexelView(device_, work_, VK_FORMAT_R32_UINT);
     }
     // The vertices some mesh may show inside the rectangle and the culling sphere, and their
     // one-rings (whose radial curvature the zero-crossing test reads). A vertex left out lies

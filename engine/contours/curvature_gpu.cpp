@@ -123,12 +123,12 @@ void GpuCurvature::setPositions(const std::vector<float>& positions)
         for (gpu::Buffer* b : {&positions_, &normals_, &curvature_, &directions_, &derivatives_, &shapes_})
             *b = gpu::createBuffer(device_, bytes, usage);
         shapesC23_ = gpu::createBuffer(device_, bytes / 4, usage);
-        positionTexels_ = gpu::createTexelView(device_, positions_, VK_FORMAT_R32G32B32A32_SFLOAT, 16);
-        normalTexels_ = gpu::createTexelView(device_, normals_, VK_FORMAT_R32G32B32A32_SFLOAT, 16);
-        curvatureTexels_ = gpu::createTexelView(device_, curvature_, VK_FORMAT_R32G32B32A32_SFLOAT, 16);
-        directionTexels_ = gpu::createTexelView(device_, directions_, VK_FORMAT_R32G32B32A32_SFLOAT, 16);
-        shapeTexels_ = gpu::createTexelView(device_, shapes_, VK_FORMAT_R32G32B32A32_UINT, 16);
-        c23Texels_ = gpu::createTexelView(device_, shapesC23_, VK_FORMAT_R32_UINT, 4);
+        positionTexels_ = gpu::createTexelView(device_, positions_, VK_FORMAT_R32G32B32A32_SFLOAT);
+        normalTexels_ = gpu::createTexelView(device_, normals_, VK_FORMAT_R32G32B32A32_SFLOAT);
+        curvatureTexels_ = gpu::createTexelView(device_, curvature_, VK_FORMAT_R32G32B32A32_SFLOAT);
+        directionTexels_ = gpu::createTexelView(device_, directions_, VK_FORMAT_R32G32B32A32_SFLOAT);
+        shapeTexels_ = gpu::createTexelView(device_, shapes_, VK_FORMAT_R32G32B32A32_UINT);
+        c23Texels_ = gpu::createTexelView(device_, shapesC23_, VK_FORMAT_R32_UINT);
     }
     meshCount_ = meshCount;
     const auto nv = static_cast<size_t>(vertexCount_);

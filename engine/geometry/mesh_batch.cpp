@@ -66,8 +66,8 @@ void uploadWedges(gpu::Device& device, const Triangles& F, Eigen::Index vertexCo
 
 WedgeTexels createWedgeTexels(gpu::Device& device, const gpu::Buffer& offsets, const gpu::Buffer& corners)
 {
-    return {gpu::createTexelView(device, offsets, VK_FORMAT_R32_UINT, sizeof(std::uint32_t)),
-            gpu::createTexelView(device, corners, VK_FORMAT_R32G32_UINT, 2 * sizeof(std::uint32_t))};
+    return {gpu::createTexelView(device, offsets, VK_FORMAT_R32_UINT),
+            gpu::createTexelView(device, corners, VK_FORMAT_R32G32_UINT)};
 }
 
 void destroyWedgeTexels(gpu::Device& device, WedgeTexels& texels)

@@ -62,7 +62,7 @@ void GpuNormals::setPositions(const std::vector<float>& positions)
             gpu::destroyBuffer(device_, normals_);
         }
         positions_ = gpu::createBuffer(device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-        positionTexels_ = gpu::createTexelView(device_, positions_, VK_FORMAT_R32G32B32A32_SFLOAT, 4 * sizeof(float));
+        positionTexels_ = gpu::createTexelView(device_, positions_, VK_FORMAT_R32G32B32A32_SFLOAT);
         normals_ = gpu::createBuffer(device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     }
     meshCount_ = static_cast<std::uint32_t>(positions.size() / stride);

@@ -106,9 +106,24 @@ void readbackBuffer(Device& device, const Buffer& buffer, void* data, std::size_
     destroyBuffer(device, staging);
 }
 
-TexelView createTexelView(Device& device, const Buffer& buffer, VkFormat format, std::uint32_t texelBytes)
+TexelView createTexelView(Device& device, const Buffer& buffer, VkFormat format)
 {
-    if (texelBytes == 0 || buffer.size % texelBytes != 0)
+    std::uint32_t texelBytes = 0;
+    switch (format) {
+    case VK_FORMAT_R32_UINT:
+        texelBytes = 4;
+        break;
+    case VK_FORMAT_R32G32_UINT:
+        texelBytes = 8;
+        break;
+    case VK_FORMAT_R32G32B32A32_UINT:
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+        texelBytes = 16;
+        break;
+    default:
+        fail("createTexelView: format ", static_cast<int>(format), " is not one of the 32-bit formats every device can fetch");
+    }
+    if (buffer.size % texelBytes != 0)
         fail("createTexelView: a buffer of ", buffer.size, " bytes is not a whole number of ", texelBytes, "-byte texels");
     const VkDeviceSize elements = buffer.size / texelBytes;
     if (elements > device.properties.limits.maxTexelBufferElements)

@@ -43,10 +43,11 @@ struct TexelView {
     VkDeviceSize elements = 0; ///< texels in the view
 };
 
-/// A view of all of `buffer` as texels of `format` (e.g. VK_FORMAT_R32_UINT,
-/// VK_FORMAT_R32G32B32A32_SFLOAT) of `texelBytes` bytes each. Throws Error when the buffer holds
-/// more texels than the device's maxTexelBufferElements or is not a whole number of texels.
-TexelView createTexelView(Device& device, const Buffer& buffer, VkFormat format, std::uint32_t texelBytes);
+/// A view of all of `buffer` as texels of `format`: one of the 32-bit-per-channel formats
+/// R32_UINT, R32G32_UINT, R32G32B32A32_UINT and R32G32B32A32_SFLOAT, which every device can
+/// fetch from. Throws Error for another format, a buffer that is not a whole number of texels,
+/// or more texels than the device's maxTexelBufferElements.
+TexelView createTexelView(Device& device, const Buffer& buffer, VkFormat format);
 void destroyTexelView(Device& device, TexelView& view);
 
 struct Image {

@@ -1,11 +1,11 @@
 #pragma once
-// Compute programs and the one dispatch helper. A program is a SPIR-V compute shader whose
-// bindings 0..N-1 in set 0 are storage buffers, or uniform buffers where `uniformMask` has
-// bit i set (small per-dispatch parameters: implementations treat them as uniform, which a CPU
-// implementation such as lavapipe turns into one scalar load instead of a load per invocation),
-// or uniform texel buffers where `texelMask` has bit i set (large read-only data each
-// invocation reads at its own address: see TexelView in gpu/buffers.h), with an optional
-// push-constant block.
+// Compute programs and the dispatch helpers (direct and indirect, one binding path). A program
+// is a SPIR-V compute shader whose bindings 0..N-1 in set 0 are storage buffers, or uniform
+// buffers where `uniformMask` has bit i set (small per-dispatch parameters: implementations
+// treat them as uniform, which a CPU implementation such as lavapipe turns into one scalar load
+// instead of a load per invocation), or uniform texel buffers where `texelMask` has bit i set
+// (large read-only data each invocation reads at its own address: see TexelView in
+// gpu/buffers.h), with an optional push-constant block.
 // The workgroup size is read from the SPIR-V (OpExecutionMode LocalSize), so the shader is the
 // single source of truth for it.
 

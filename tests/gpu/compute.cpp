@@ -37,7 +37,7 @@ TEST_CASE("compute: a binding of the wrong kind is an error naming it, raised be
     gpu::Device& d = test::device();
     gpu::ComputeProgram p = gpu::createComputeProgram(d, gpu::shaderCode(normals_comp), 4, 16, 0, NORMALS_TEXEL_BINDINGS);
     gpu::Buffer buffer = gpu::createBuffer(d, 64, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-    gpu::TexelView view = gpu::createTexelView(d, buffer, VK_FORMAT_R32_UINT, 4);
+    gpu::TexelView view = gpu::createTexelView(d, buffer, VK_FORMAT_R32_UINT);
     REQUIRE(view.elements == 16);
     const std::uint32_t constants[4] = {1, 1, 0, 0};
     VkCommandBuffer cmd = gpu::beginOneShot(d);
@@ -63,9 +63,10 @@ TEST_CASE("buffers: a texel view must cover whole texels")
 {
     gpu::Device& d = test::device();
     gpu::Buffer buffer = gpu::createBuffer(d, 20, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-    REQUIRE_THROWS_WITH(gpu::createTexelView(d, buffer, VK_FORMAT_R32G32B32A32_UINT, 16),
+    REQUIRE_THROWS_WITH(gpu::createTexelView(d, buffer, VK_FORMAT_R32G32B32A32_UINT),
                         Catch::Contains("20 bytes is not a whole number of 16-byte texels"));
-    gpu::TexelView view = gpu::createTexelView(d, buffer, VK_FORMAT_R32_UINT, 4);
+    REQUIRE_THROWS_WITH(gpu::createTexelView(d, buffer, VK_FORMAT_R8G8B8A8_UNORM), Catch::Contains("is not one of the 32-bit formats"));
+    gpu::TexelView view = gpu::createTexelView(d, buffer, VK_FORMAT_R32_UINT);
     REQUIRE(view.elements == 5);
     gpu::destroyTexelView(d, view);
     gpu::destroyBuffer(d, buffer);
