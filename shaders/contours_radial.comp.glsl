@@ -8,6 +8,8 @@
 // (shaders/shared.h), and the pairs that passed a test are listed for pass 2. Culling to the
 // rectangle and sphere is pass 2's, which projects the vertices it appends anyway. Every lane
 // does the same work: no branch a SIMD row would run for one lane.
+// Each invocation does CONTOURS_MESHES_PER_INVOCATION meshes of one vertex, and lists them all
+// with one atomic per subgroup: on lavapipe that atomic, not the arithmetic, was the cost.
 #include "shared.h"
 
 layout(local_size_x = BATCH_GROUP_MESHES, local_size_y = CONTOURS_GROUP_VERTICES, local_size_z = 1) in;
@@ -25,61 +27,81 @@ layout(binding = CONTOURS_BINDING_WORK, std430) restrict buffer Work {
 #include "contours_view.glsl"
 #include "octahedral.glsl"
 
+// The radial word of the pair at batch index `index`, whose vertex has VertexFlag bits `flag`;
+// `listed` says whether pass 2 must visit it.
+uint radialWord(int index, uint flag, out bool listed)
+{
+    vec3 p = texelFetch(positions, index).xyz;
+    uvec4 shape = texelFetch(shapes, index);
+    vec3 n = octDecode(unpackSnorm2x16(shape.x));
+    vec3 view = toCamera(p);
+    float ndotv = dot(n, view);
+    // k_r = k1 cos^2 + k2 sin^2 of the angle between w (the view vector projected on the
+    // tangent plane) and dir1; D_w k_r from the derivative tensor C (contours/curvature.h).
+    // dir1 and dir2 are tangent, so w's coordinates are view's.
+    vec3 d1 = octDecode(unpackSnorm2x16(shape.y));
+    float u = dot(view, d1), t = dot(view, cross(n, d1));
+    float s2 = max(u * u + t * t, 1e-30);
+    vec2 k = unpackHalf2x16(shape.z);
+    vec4 c = vec4(unpackHalf2x16(shape.w), unpackHalf2x16(texelFetch(shapesC23, index).x));
+    float s = sqrt(s2);
+    float kr = (k.x * u * u + k.y * t * t) / s2;
+    float cwww = (c.x * u * u * u + 3.0 * c.y * u * u * t + 3.0 * c.z * u * t * t + c.w * t * t * t) / (s2 * s);
+    float dwkr = cwww + 2.0 * k.x * k.y * ndotv / s;
+    bool plane = !(shape.x == 0u && shape.y == 0u);
+    bool radialDefined = plane && u * u + t * t > 1e-24;
+    // +0 where undefined or zero, so that the word's sign is k_r's "below zero".
+    kr = radialDefined && kr != 0.0 ? clamp(kr, -1e30, 1e30) : 0.0;
+
+    uint bits = 0u;
+    if (abs(ndotv) < thresholds.x)
+        bits |= CONTOUR_SILHOUETTE;
+    if (radialDefined && ndotv > 0.0 && dwkr * thresholds.z > thresholds.y)
+        bits |= CONTOUR_SUGGESTIVE;
+    if ((flag & VERTEX_LABELLED) != 0u && ndotv > -thresholds.x)
+        bits |= CONTOUR_LABELLED;
+    bits = (flag & VERTEX_EXCLUDED) == 0u ? bits : 0u;
+    listed = plane && bits != 0u;
+    return plane ? (floatBitsToUint(kr) & ~CONTOURS_STATE_MASK) | bits : CONTOURS_NO_RADIAL;
+}
+
 void main()
 {
-    uint mesh = gl_GlobalInvocationID.x;
+    // Invocation x's meshes are first + j * BATCH_GROUP_MESHES: at each step j the lanes of a
+    // row do neighbouring meshes, so their reads and stores are contiguous.
+    uint x = gl_GlobalInvocationID.x;
+    uint first = x / BATCH_GROUP_MESHES * (BATCH_GROUP_MESHES * CONTOURS_MESHES_PER_INVOCATION) + x % BATCH_GROUP_MESHES;
     uint meshCount = counts.y;
-    if (mesh >= meshCount)
-        return;
     uint i = gl_GlobalInvocationID.y;
-    if (i < counts.w) {
-        uvec2 listed = texelFetch(vertexList, int(i)).xy; // vertex, flags
-        uint v = listed.x;
-        int index = int(v * meshCount + mesh);
-        vec3 p = texelFetch(positions, index).xyz;
-        uvec4 shape = texelFetch(shapes, index);
-        vec3 n = octDecode(unpackSnorm2x16(shape.x));
-        vec3 view = toCamera(p);
-        float ndotv = dot(n, view);
-        // k_r = k1 cos^2 + k2 sin^2 of the angle between w (the view vector projected on the
-        // tangent plane) and dir1; D_w k_r from the derivative tensor C (contours/curvature.h).
-        // dir1 and dir2 are tangent, so w's coordinates are view's.
-        vec3 d1 = octDecode(unpackSnorm2x16(shape.y));
-        float u = dot(view, d1), t = dot(view, cross(n, d1));
-        float s2 = max(u * u + t * t, 1e-30);
-        vec2 k = unpackHalf2x16(shape.z);
-        vec4 c = vec4(unpackHalf2x16(shape.w), unpackHalf2x16(texelFetch(shapesC23, index).x));
-        float s = sqrt(s2);
-        float kr = (k.x * u * u + k.y * t * t) / s2;
-        float cwww = (c.x * u * u * u + 3.0 * c.y * u * u * t + 3.0 * c.z * u * t * t + c.w * t * t * t) / (s2 * s);
-        float dwkr = cwww + 2.0 * k.x * k.y * ndotv / s;
-        bool plane = !(shape.x == 0u && shape.y == 0u);
-        bool radialDefined = plane && u * u + t * t > 1e-24;
-        // +0 where undefined or zero, so that the word's sign is k_r's "below zero".
-        kr = radialDefined && kr != 0.0 ? clamp(kr, -1e30, 1e30) : 0.0;
+    if (first >= meshCount || i >= counts.w)
+        return;
+    uvec2 listed = texelFetch(vertexList, int(i)).xy; // vertex, flags
+    uint row = listed.x * meshCount;
+    bool pass[CONTOURS_MESHES_PER_INVOCATION];
+    uvec4 ballots[CONTOURS_MESHES_PER_INVOCATION];
+    uint total = 0u;
+    for (uint j = 0u; j < CONTOURS_MESHES_PER_INVOCATION; ++j) {
+        uint mesh = first + j * BATCH_GROUP_MESHES;
+        bool valid = mesh < meshCount;
+        uint index = row + min(mesh, meshCount - 1u); // past the end: computed, not stored
+        uint word = radialWord(int(index), listed.y, pass[j]);
+        if (valid)
+            radialOut[index] = word;
+        pass[j] = pass[j] && valid;
+        ballots[j] = subgroupBallot(pass[j]);
+        total += subgroupBallotBitCount(ballots[j]);
+    }
 
-        uint flag = listed.y;
-        uint bits = 0u;
-        if (abs(ndotv) < thresholds.x)
-            bits |= CONTOUR_SILHOUETTE;
-        if (radialDefined && ndotv > 0.0 && dwkr * thresholds.z > thresholds.y)
-            bits |= CONTOUR_SUGGESTIVE;
-        if ((flag & VERTEX_LABELLED) != 0u && ndotv > -thresholds.x)
-            bits |= CONTOUR_LABELLED;
-        bits = (flag & VERTEX_EXCLUDED) == 0u ? bits : 0u;
-        radialOut[index] = plane ? (floatBitsToUint(kr) & ~CONTOURS_STATE_MASK) | bits : CONTOURS_NO_RADIAL;
-
-        // List the pair for pass 2: one atomic per subgroup, which also grows pass 2's size.
-        bool forPass2 = plane && bits != 0u;
-        uvec4 ballot = subgroupBallot(forPass2);
-        uint count = subgroupBallotBitCount(ballot);
-        uint base = 0u;
-        if (subgroupElect() && count > 0u) {
-            base = atomicAdd(pairCount, count);
-            atomicMax(appendGroups.x, (base + count + CONTOURS_GROUP_PAIRS - 1u) / CONTOURS_GROUP_PAIRS);
-        }
-        base = subgroupBroadcastFirst(base);
-        if (forPass2)
-            pairs[base + subgroupBallotExclusiveBitCount(ballot)] = uint(index);
+    // List the pairs for pass 2: one atomic per subgroup, which also grows pass 2's size.
+    uint base = 0u;
+    if (subgroupElect() && total > 0u) {
+        base = atomicAdd(pairCount, total);
+        atomicMax(appendGroups.x, (base + total + CONTOURS_GROUP_PAIRS - 1u) / CONTOURS_GROUP_PAIRS);
+    }
+    base = subgroupBroadcastFirst(base);
+    for (uint j = 0u; j < CONTOURS_MESHES_PER_INVOCATION; ++j) {
+        if (pass[j])
+            pairs[base + subgroupBallotExclusiveBitCount(ballots[j])] = row + first + j * BATCH_GROUP_MESHES;
+        base += subgroupBallotBitCount(ballots[j]);
     }
 }

@@ -58,17 +58,23 @@
 //   kernels keep few of them: large read-only data are texel buffers (one vector gather per
 //   row), pass 1 writes a single word per (mesh, vertex) and lists pairs with one atomic per
 //   subgroup, and pass 2 stores only what it appends, also with one atomic per subgroup;
+// - an atomic waits for the stores before it to leave the core (a locked instruction on x86),
+//   so with the radial words streaming out, the listing atomic cost a third of pass 1. Each
+//   pass 1 invocation therefore does CONTOURS_MESHES_PER_INVOCATION meshes of its vertex (a
+//   loop of constant trip count), and a subgroup lists 64 pairs with one atomic:
+//   the whole view took 29% less;
 // - a branch is run for every lane of a row when any lane takes it, so every lane does the
 //   same work in pass 1 and the neighbour loop of pass 2 has a trip count of zero where the
 //   vertex failed the pre-test;
-// - the body of a loop costs several times the same code outside one (a grid-stride loop
-//   around the whole kernel halved its speed), so each invocation does one (mesh, vertex).
+// - the body of a loop with a varying trip count costs several times the same code outside
+//   one (a grid-stride loop around the whole kernel halved its speed), so there is none.
 // contours_radial.comp: per (mesh, vertex), the radial curvature and the vertex's own tests:
 // silhouette, labelled, and the suggestive pre-test (front-facing and D_w k_r over threshold),
 // and the list of the (mesh, vertex) pairs that passed one (a quarter of them on faces), so that
 // pass 2 visits only those: one atomic per subgroup (ballot), and the indirect dispatch size.
 // (T) marks texel-buffer bindings (gpu::TexelView).
-#define CONTOURS_GROUP_VERTICES 32    // pass 1: workgroups of 8 meshes x 32 vertices
+#define CONTOURS_GROUP_VERTICES 32    // pass 1: workgroups of 8 x 32 invocations (meshes x vertices)
+#define CONTOURS_MESHES_PER_INVOCATION 8u // pass 1: meshes per invocation, so 64 per SIMD row and per listing atomic
 #define CONTOURS_GROUP_PAIRS 256      // pass 2: workgroups of 256 listed pairs
 #define CONTOURS_BINDING_POSITIONS 0  // (T) RGBA32F, batch layout
 #define CONTOURS_BINDING_SHAPE 1      // (T) RGBA32UI: DCURV_BINDING_SHAPE

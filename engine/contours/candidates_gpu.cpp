@@ -246,8 +246,11 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
         view.counts[2] = capacity_;
         view.counts[3] = listCount;
         gpu::uploadBuffer(device_, view_, &view, sizeof(view));
-        // One invocation per (mesh, listed vertex): the kernels have no loop over vertices.
+        // Pass 1: one invocation per listed vertex and CONTOURS_MESHES_PER_INVOCATION meshes (a
+        // workgroup's BATCH_GROUP_MESHES invocations along x do 8 x 8 neighbouring meshes, so
+        // whole workgroups cover every mesh). No kernel loops over vertices.
         const std::uint32_t rows = listCount;
+        const std::uint32_t meshInvocations = (meshCount + CONTOURS_MESHES_PER_INVOCATION - 1) / CONTOURS_MESHES_PER_INVOCATION;
         gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
             gpu::timerStart(cmd, timer_);
             vkCmdFillBuffer(cmd, output_.buffer, 0, outputHeader, 0);
@@ -257,7 +260,7 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
             const std::initializer_list<gpu::Binding> buffers = {
                 &curvature_.positionTexels(), &curvature_.shapeTexels(), &curvature_.c23Texels(), &vertexListTexels_, &view_, &radial_,
                 &radialTexels_, &neighbourOffsetTexels_, &neighbourTexels_, &output_, &work_, &workTexels_};
-            gpu::dispatchRaw(device_, cmd, radialProgram_, meshCount, rows, 1, buffers, nullptr, 0);
+            gpu::dispatchRaw(device_, cmd, radialProgram_, meshInvocations, rows, 1, buffers, nullptr, 0);
             gpu::computeToIndirectBarrier(cmd);
             gpu::dispatchIndirect(device_, cmd, program_, work_, 0, buffers, nullptr, 0);
             gpu::hostReadBarrier(cmd);

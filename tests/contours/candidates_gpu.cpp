@@ -18,14 +18,15 @@ struct Batch {
     std::vector<float> positions;
 };
 
-// Bumpy tori: silhouettes from every side and suggestive contours on the inner ring.
-Batch bumpyTori(int count)
+// Bumpy tori: silhouettes from every side and suggestive contours on the inner ring; the minor
+// radius grows by `radiusStep` from one to the next.
+Batch bumpyTori(int count, int rings = 96, int sides = 48, double radiusStep = 1.0)
 {
     Batch b;
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> phase(0, 2 * M_PI);
     for (int m = 0; m < count; ++m) {
-        Mesh t = makeTorus(30.0, 9.0 + m, 96, 48);
+        Mesh t = makeTorus(30.0, 9.0 + radiusStep * m, rings, sides);
         const double a = phase(rng), c = phase(rng);
         for (Eigen::Index v = 0; v < t.V.rows(); ++v)
             t.V(v, 2) *= 1.0 + 0.2 * std::sin(0.15 * t.V(v, 0) + a) * std::cos(0.1 * t.V(v, 1) + c);
@@ -140,6 +141,31 @@ TEST_CASE("candidates_gpu: the cloud equals the CPU reference, orthographic and 
         compareWithReference(batch, curvature, gpu, flags,
                              frameMesh(batch.meshes[0], {30, 25}, 640, 480, Projection::Perspective), params);
     }
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("candidates_gpu: 70 faces, more than one pass-1 invocation per vertex and a partial last one, equal the CPU reference")
+{
+    // Pass 1 gives each invocation CONTOURS_MESHES_PER_INVOCATION meshes, interleaved across a
+    // row's lanes: 70 meshes need two blocks of 64, the second cut short, and a mesh count
+    // that is no multiple of 8.
+    const Batch batch = bumpyTori(70, 48, 24, 0.2);
+    const Eigen::Index nv = batch.meshes[0].V.rows();
+    GpuCurvature curvature(test::device(), batch.meshes[0].F, nv);
+    curvature.setPositions(batch.positions);
+    curvature.run();
+    const std::vector<std::uint32_t> flags(nv, 0);
+    GpuCandidates gpu(test::device(), curvature, flags);
+    ContourParams params;
+    params.silhouetteThreshold = defaultSilhouetteThreshold(nv);
+    params.suggestiveThreshold = 0.005;
+    params.featureSize = meanEdgeLength(batch.meshes[0]);
+    const Camera camera = frameMesh(batch.meshes[0], {20, 35}, 640, 480, Projection::Perspective);
+    compareWithReference(batch, curvature, gpu, flags, camera, params);
+    std::set<std::uint32_t> meshes;
+    for (const Candidate& c : gpu.build(camera, params))
+        meshes.insert(c.mesh);
+    REQUIRE(meshes.size() == batch.meshes.size());
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
 
