@@ -48,21 +48,19 @@ uint radialWord(int index, uint flag, out bool listed)
     float kr = (k.x * u * u + k.y * t * t) / s2;
     float cwww = (c.x * u * u * u + 3.0 * c.y * u * u * t + 3.0 * c.z * u * t * t + c.w * t * t * t) / (s2 * s);
     float dwkr = cwww + 2.0 * k.x * k.y * ndotv / s;
-    bool plane = !(shape.x == 0u && shape.y == 0u);
-    bool radialDefined = plane && u * u + t * t > 1e-24;
+    // Selections by mix() and all() rather than if, ?: and &&, which glslang turns into
+    // branches (shaders/shared.h).
+    bool plane = (shape.x | shape.y) != 0u;
+    bool radialDefined = all(bvec2(plane, u * u + t * t > 1e-24));
     // +0 where undefined or zero, so that the word's sign is k_r's "below zero".
-    kr = radialDefined && kr != 0.0 ? clamp(kr, -1e30, 1e30) : 0.0;
+    kr = mix(0.0, clamp(kr, -1e30, 1e30), all(bvec2(radialDefined, kr != 0.0)));
 
-    uint bits = 0u;
-    if (abs(ndotv) < thresholds.x)
-        bits |= CONTOUR_SILHOUETTE;
-    if (radialDefined && ndotv > 0.0 && dwkr * thresholds.z > thresholds.y)
-        bits |= CONTOUR_SUGGESTIVE;
-    if ((flag & VERTEX_LABELLED) != 0u && ndotv > -thresholds.x)
-        bits |= CONTOUR_LABELLED;
-    bits = (flag & VERTEX_EXCLUDED) == 0u ? bits : 0u;
-    listed = plane && bits != 0u;
-    return plane ? (floatBitsToUint(kr) & ~CONTOURS_STATE_MASK) | bits : CONTOURS_NO_RADIAL;
+    uint bits = mix(0u, CONTOUR_SILHOUETTE, abs(ndotv) < thresholds.x) |
+                mix(0u, CONTOUR_SUGGESTIVE, all(bvec3(radialDefined, ndotv > 0.0, dwkr * thresholds.z > thresholds.y))) |
+                mix(0u, CONTOUR_LABELLED, all(bvec2((flag & VERTEX_LABELLED) != 0u, ndotv > -thresholds.x)));
+    bits = mix(bits, 0u, (flag & VERTEX_EXCLUDED) != 0u);
+    listed = all(bvec2(plane, bits != 0u));
+    return mix(CONTOURS_NO_RADIAL, (floatBitsToUint(kr) & ~CONTOURS_STATE_MASK) | bits, plane);
 }
 
 void main()

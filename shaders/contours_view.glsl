@@ -2,8 +2,7 @@
 // host side is ContourViewGpu in engine/contours/candidates_gpu.cpp.
 layout(binding = CONTOURS_BINDING_VIEW, std140) uniform View {
     mat4 viewProjection;
-    vec4 eye;        // xyz; w = 1 for perspective, 0 for orthographic
-    vec4 toCameraOrtho;
+    vec4 eye;        // perspective: the eye, 1; orthographic: the unit vector towards the camera, 0
     vec4 rect;       // x0, y0, x1, y1 in pixels
     vec4 sphere;     // centre, radius in mm
     vec4 thresholds; // silhouette, suggestive, featureSize^2, 0
@@ -11,9 +10,12 @@ layout(binding = CONTOURS_BINDING_VIEW, std140) uniform View {
     uvec4 counts;    // vertexCount, meshCount, capacity, listed vertices
 };
 
+// The unit vector from p towards the camera. Arithmetic rather than a ?: on the projection:
+// glslang makes a branch of that, and lavapipe runs both sides of it for every row (4 ms of a
+// whole view).
 vec3 toCamera(vec3 p)
 {
-    return eye.w > 0.5 ? normalize(eye.xyz - p) : toCameraOrtho.xyz;
+    return normalize(eye.xyz - p * eye.w);
 }
 
 // Pixel position (x, y; (0, 0) top-left) and depth in [0, 1] of a world point.

@@ -65,7 +65,9 @@
 //   the whole view took 29% less;
 // - a branch is run for every lane of a row when any lane takes it, so every lane does the
 //   same work in pass 1 and the neighbour loop of pass 2 has a trip count of zero where the
-//   vertex failed the pre-test;
+//   vertex failed the pre-test. glslang makes branches of if, of ?: and && on anything but
+//   plain operands, and lavapipe then runs both sides with masks: pass 1 selects with mix()
+//   and all() instead (the ?: of toCamera alone cost 10% of a whole view);
 // - the body of a loop with a varying trip count costs several times the same code outside
 //   one (a grid-stride loop around the whole kernel halved its speed), so there is none.
 // contours_radial.comp: per (mesh, vertex), the radial curvature and the vertex's own tests:

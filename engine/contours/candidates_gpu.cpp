@@ -19,14 +19,13 @@ namespace {
 struct ContourViewGpu {
     glm::mat4 viewProjection;
     glm::vec4 eye;
-    glm::vec4 toCameraOrtho;
     glm::vec4 rect;
     glm::vec4 sphere;
     glm::vec4 thresholds;
     glm::vec4 screen;
     std::uint32_t counts[4];
 };
-static_assert(sizeof(ContourViewGpu) == 64 + 6 * 16 + 16);
+static_assert(sizeof(ContourViewGpu) == 64 + 5 * 16 + 16);
 
 struct CandidateGpu {
     std::uint32_t ids[4];
@@ -233,8 +232,7 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
 
     ContourViewGpu view{};
     view.viewProjection = glm::mat4(camera.projection * camera.view);
-    view.eye = glm::vec4(glm::vec3(camera.eye), camera.kind == Projection::Perspective ? 1.0f : 0.0f);
-    view.toCameraOrtho = glm::vec4(glm::vec3(-camera.forward), 0.0f);
+    view.eye = camera.kind == Projection::Perspective ? glm::vec4(glm::vec3(camera.eye), 1.0f) : glm::vec4(glm::vec3(-camera.forward), 0.0f);
     view.rect = {clampToFloat(p.rect[0]), clampToFloat(p.rect[1]), clampToFloat(p.rect[2]), clampToFloat(p.rect[3])};
     view.sphere = {float(p.sphere[0]), float(p.sphere[1]), float(p.sphere[2]), clampToFloat(p.sphere[3])};
     view.thresholds = {float(p.silhouetteThreshold), float(p.suggestiveThreshold), float(p.featureSize * p.featureSize), 0.0f};
