@@ -52,39 +52,22 @@ vec4 projectDerivative(vec3 u, vec3 v, vec4 c, vec3 ru, vec3 rv)
                 c.x * y.x * y.x * y.x + 3.0 * c.y * y.x * y.x * y.y + 3.0 * c.z * y.x * y.y * y.y + c.w * y.y * y.y * y.y);
 }
 
-// Solves the symmetric positive (semi)definite A x = r by Cholesky; zero when singular.
-vec4 solveSymmetric4(mat4 A, vec4 r)
+// Solves A x = r for the fit's normal equations, which are symmetric and tridiagonal:
+// diagonal (a.x, a.y, a.z, a.w), off-diagonal o (all three equal), by Cholesky; zero when not
+// positive definite. Straight-line code: lavapipe keeps a matrix indexed in loops in memory.
+vec4 solveTridiagonal4(vec4 a, float o, vec4 r)
 {
-    mat4 L = mat4(0.0);
-    for (int j = 0; j < 4; ++j) {
-        float d = A[j][j];
-        for (int k = 0; k < j; ++k)
-            d -= L[j][k] * L[j][k];
-        if (!(d > 1e-30))
-            return vec4(0.0);
-        L[j][j] = sqrt(d);
-        for (int i = j + 1; i < 4; ++i) {
-            float s = A[i][j];
-            for (int k = 0; k < j; ++k)
-                s -= L[i][k] * L[j][k];
-            L[i][j] = s / L[j][j];
-        }
-    }
-    vec4 y;
-    for (int i = 0; i < 4; ++i) {
-        float s = r[i];
-        for (int k = 0; k < i; ++k)
-            s -= L[i][k] * y[k];
-        y[i] = s / L[i][i];
-    }
-    vec4 x;
-    for (int i = 3; i >= 0; --i) {
-        float s = y[i];
-        for (int k = i + 1; k < 4; ++k)
-            s -= L[k][i] * x[k];
-        x[i] = s / L[i][i];
-    }
-    return x;
+    float l00 = sqrt(a.x), l10 = o / l00;
+    float d1 = a.y - l10 * l10;
+    float l11 = sqrt(d1), l21 = o / l11;
+    float d2 = a.z - l21 * l21;
+    float l22 = sqrt(d2), l32 = o / l22;
+    float d3 = a.w - l32 * l32;
+    float l33 = sqrt(d3);
+    float y0 = r.x / l00, y1 = (r.y - l10 * y0) / l11, y2 = (r.z - l21 * y1) / l22, y3 = (r.w - l32 * y2) / l33;
+    float x3 = y3 / l33, x2 = (y2 - l32 * x3) / l22, x1 = (y1 - l21 * x2) / l11, x0 = (y0 - l10 * x1) / l00;
+    bool definite = all(greaterThan(vec4(a.x, d1, d2, d3), vec4(1e-30)));
+    return mix(vec4(0.0), vec4(x0, x1, x2, x3), bvec4(definite));
 }
 
 void main()
@@ -102,6 +85,7 @@ void main()
         vec3 n = texelFetch(normals, int(index)).xyz;
         vec3 d1 = texelFetch(directions, int(index)).xyz;
         vec3 d2 = cross(n, d1);
+        vec3 kv = vec3(k.x, 0.0, k.y); // the vertex's own tensor in (d1, d2)
         vec3 p = loadBatch(v, mesh).xyz;
         vec4 sum = vec4(0.0);
         for (uint w = texelFetch(wedgeOffsets, int(v)).x; area > 0.0 && w < texelFetch(wedgeOffsets, int(v + 1)).x; ++w) {
@@ -113,21 +97,16 @@ void main()
                 continue;
             vec3 t = normalize(e0);
             vec3 b = cross(normalize(fn), t);
-            vec3 c0 = vertexTensorIn(v, t, b), c1 = vertexTensorIn(bc.x, t, b), c2 = vertexTensorIn(bc.y, t, b);
-            // Tensor differences along e0 (c - b), e1 (v - c), e2 (b - v).
-            vec3 dc[3] = vec3[3](c2 - c1, c0 - c2, c1 - c0);
-            vec3 e[3] = vec3[3](e0, e1, e2);
-            mat4 A = mat4(0.0);
-            vec4 r = vec4(0.0);
-            for (int j = 0; j < 3; ++j) {
-                float u = dot(e[j], t), vv = dot(e[j], b);
-                vec4 rows[3] = vec4[3](vec4(u, vv, 0.0, 0.0), vec4(0.0, u, vv, 0.0), vec4(0.0, 0.0, u, vv));
-                for (int q = 0; q < 3; ++q) {
-                    A += outerProduct(rows[q], rows[q]);
-                    r += rows[q] * dc[j][q];
-                }
-            }
-            vec4 C = solveSymmetric4(A, r);
+            vec3 c0 = projectTensor(d1, d2, kv, t, b), c1 = vertexTensorIn(bc.x, t, b), c2 = vertexTensorIn(bc.y, t, b);
+            // Tensor differences along e0 (c - b), e1 (v - c), e2 (b - v). Each edge (u, w) in
+            // the frame (t, b) gives three equations, rows (u, w, 0, 0), (0, u, w, 0), (0, 0, u, w)
+            // against its difference's (x, y, z): their normal equations, written out.
+            vec3 eu = vec3(dot(e0, t), dot(e1, t), dot(e2, t)), ew = vec3(dot(e0, b), dot(e1, b), dot(e2, b));
+            vec3 dx = vec3(c2.x - c1.x, c0.x - c2.x, c1.x - c0.x), dy = vec3(c2.y - c1.y, c0.y - c2.y, c1.y - c0.y),
+                 dz = vec3(c2.z - c1.z, c0.z - c2.z, c1.z - c0.z);
+            float suu = dot(eu, eu), suw = dot(eu, ew), sww = dot(ew, ew);
+            vec4 r = vec4(dot(eu, dx), dot(ew, dx) + dot(eu, dy), dot(ew, dy) + dot(eu, dz), dot(ew, dz));
+            vec4 C = solveTridiagonal4(vec4(suu, suu + sww, suu + sww, sww), suw, r);
             float corner = cornerAreas(e0, e1, e2).x;
             sum += corner * projectDerivative(t, b, C, d1, d2);
         }
