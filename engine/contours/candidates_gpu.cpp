@@ -64,6 +64,29 @@ bool sphereMayShow(const Camera& camera, const std::array<double, 4>& sphere, co
     return x1 >= rect[0] - slack && x0 <= rect[2] + slack && y1 >= rect[1] - slack && y0 <= rect[3] + slack;
 }
 
+// An upper bound of n . v, the normal's cosine to the direction towards the camera, over every
+// point of the vertex's bounding sphere and every normal in its cone (both over the batch):
+// the smallest angle between the cone and the directions from the sphere to the eye.
+double maxFacing(const Camera& camera, const std::array<double, 4>& sphere, const std::array<double, 4>& cone)
+{
+    if (cone[3] >= M_PI)
+        return 1;
+    glm::dvec3 towards = -glm::normalize(camera.forward);
+    double spread = 0;
+    if (camera.kind == Projection::Perspective) {
+        const glm::dvec3 toEye = camera.eye - glm::dvec3(sphere[0], sphere[1], sphere[2]);
+        const double distance = glm::length(toEye);
+        if (!(distance > sphere[3] * (1 + 1e-9) + 1e-9))
+            return 1;
+        towards = toEye / distance;
+        spread = std::asin(sphere[3] / distance);
+    }
+    const glm::dvec3 axis(cone[0], cone[1], cone[2]);
+    const double axisAngle = std::atan2(glm::length(glm::cross(axis, towards)), glm::dot(axis, towards));
+    const double gap = axisAngle - cone[3] - spread;
+    return gap <= 0 ? 1.0 : std::cos(std::min(gap, M_PI));
+}
+
 // The appended candidates in (mesh, vertex) order, so that the result does not depend on GPU
 // scheduling: a stable counting sort by vertex, then by mesh, linear in the candidates (a
 // comparison sort of a view's 109,000 took 8 ms, as long as pass 2). Throws Error on an id out
@@ -184,30 +207,38 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
                                   usage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
         workTexels_ = gpu::createTexelView(device_, work_, VK_FORMAT_R32_UINT);
     }
-    // The vertices some mesh may show inside the rectangle and the culling sphere, and their
-    // one-rings (whose radial curvature the zero-crossing test reads). A vertex left out lies
-    // outside in every mesh, so the kernels would have culled it anyway: the cloud is the same.
+    // The vertices that may be a candidate in some mesh: inside the rectangle and the culling
+    // sphere, and not facing away (n . v <= -silhouetteThreshold) everywhere; and the one-rings
+    // of those that may pass the suggestive pre-test (n . v > 0), whose radial curvature the
+    // zero-crossing test reads. A vertex left out would give no candidate and be read by none:
+    // the cloud is the same. The facing bound allows 1e-4 for the kernels' float arithmetic.
     const std::vector<std::array<double, 4>>& bounds = curvature_.vertexBounds();
-    std::vector<char> shown(vertexCount, 0), listed(vertexCount, 0);
+    const std::vector<std::array<double, 4>>& cones = curvature_.normalCones();
+    std::vector<char> candidate(vertexCount, 0), pretest(vertexCount, 0), listed(vertexCount, 0);
     const bool everything = p.rect[0] <= -1e29 && p.rect[1] <= -1e29 && p.rect[2] >= 1e29 && p.rect[3] >= 1e29 &&
                             p.sphere[3] >= 1e29;
     for (std::uint32_t v = 0; v < vertexCount; ++v) {
         const auto& b = bounds[v];
         const double apart = std::sqrt(std::pow(b[0] - p.sphere[0], 2) + std::pow(b[1] - p.sphere[1], 2) +
                                        std::pow(b[2] - p.sphere[2], 2));
-        shown[v] = everything || (apart - b[3] <= p.sphere[3] * (1 + 1e-6) + 1e-3 && sphereMayShow(camera, b, p.rect));
+        if (!everything && !(apart - b[3] <= p.sphere[3] * (1 + 1e-6) + 1e-3 && sphereMayShow(camera, b, p.rect)))
+            continue;
+        const double facing = cones.empty() ? 1.0 : maxFacing(camera, b, cones[v]);
+        candidate[v] = facing > -p.silhouetteThreshold - 1e-4;
+        pretest[v] = facing > -1e-4;
     }
-    for (std::uint32_t v = 0; v < vertexCount; ++v)
-        if (shown[v]) {
-            listed[v] = 1;
+    for (std::uint32_t v = 0; v < vertexCount; ++v) {
+        listed[v] |= candidate[v];
+        if (pretest[v])
             for (std::uint32_t k = rings_.offsets[v]; k < rings_.offsets[v + 1]; ++k)
                 listed[rings_.vertices[k]] = 1;
-        }
+    }
     std::vector<std::uint32_t> list;
     for (std::uint32_t v = 0; v < vertexCount; ++v)
         if (listed[v])
             list.push_back(v);
     if (list.empty()) {
+        listedVertices_ = 0;
         if (timing)
             *timing = 0;
         return {};
@@ -219,6 +250,7 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
     }
     gpu::uploadBuffer(device_, vertexList_, entries.data(), entries.size() * sizeof(std::uint32_t));
     const auto listCount = static_cast<std::uint32_t>(list.size());
+    listedVertices_ = listCount;
     const std::uint64_t groupsY = (listCount + radialProgram_.localSize[1] - 1) / radialProgram_.localSize[1];
     if (groupsY > device_.properties.limits.maxComputeWorkGroupCount[1])
         fail("GpuCandidates::build: ", listCount, " vertices need ", groupsY, " workgroups in pass 1, more than this device's limit of ",

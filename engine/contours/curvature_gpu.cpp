@@ -131,6 +131,7 @@ void GpuCurvature::setPositions(const std::vector<float>& positions)
         c23Texels_ = gpu::createTexelView(device_, shapesC23_, VK_FORMAT_R32_UINT);
     }
     meshCount_ = meshCount;
+    normalCones_.clear(); // until run() or uploadShapes()
     const auto nv = static_cast<size_t>(vertexCount_);
     vertexBounds_.assign(nv, {0, 0, 0, 0});
     for (size_t m = 0; m < meshCount; ++m)
@@ -173,7 +174,39 @@ double GpuCurvature::run()
         gpu::hostReadBarrier(cmd);
         gpu::timerEnd(cmd, timer_);
     });
-    return gpu::timerMilliseconds(device_, timer_);
+    const double ms = gpu::timerMilliseconds(device_, timer_);
+    std::vector<std::uint32_t> shapes(4 * static_cast<size_t>(meshCount_) * static_cast<size_t>(vertexCount_));
+    gpu::readbackBuffer(device_, shapes_, shapes.data(), shapes.size() * 4);
+    setNormalCones(shapes);
+    return ms;
+}
+
+void GpuCurvature::setNormalCones(const std::vector<std::uint32_t>& shapes)
+{
+    // The axis is the normalised mean normal, the half-angle the widest normal's angle to it
+    // plus 1e-4 rad, far more than the float rounding between this decoder and the kernels'.
+    const auto nv = static_cast<size_t>(vertexCount_);
+    normalCones_.assign(nv, {0, 0, 1, M_PI});
+    std::vector<Eigen::Vector3d> normals(meshCount_);
+    for (size_t v = 0; v < nv; ++v) {
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        size_t count = 0;
+        for (size_t m = 0; m < meshCount_; ++m) {
+            const std::uint32_t* s = &shapes[4 * (v * meshCount_ + m)];
+            if (s[0] == 0 && s[1] == 0) // no tangent plane: never a candidate
+                continue;
+            normals[count] = octDecode(s[0]);
+            sum += normals[count++];
+        }
+        const double length = sum.norm();
+        if (count == 0 || !(length > 1e-9 * double(count)))
+            continue;
+        const Eigen::Vector3d axis = sum / length;
+        double halfAngle = 0;
+        for (size_t k = 0; k < count; ++k)
+            halfAngle = std::max(halfAngle, std::atan2(normals[k].cross(axis).norm(), normals[k].dot(axis))); // exact near 0, unlike acos
+        normalCones_[v] = {axis.x(), axis.y(), axis.z(), std::min(M_PI, halfAngle + 1e-4)};
+    }
 }
 
 GpuCurvature::PackedShapes GpuCurvature::downloadShapes()
@@ -196,6 +229,7 @@ void GpuCurvature::uploadShapes(const PackedShapes& p)
     gpu::uploadBuffer(device_, shapes_, p.shapes.data(), p.shapes.size() * 4);
     gpu::uploadBuffer(device_, shapesC23_, p.c23.data(), p.c23.size() * 4);
     shapesOnly_ = true;
+    setNormalCones(p.shapes);
 }
 
 GpuCurvature::Result GpuCurvature::download()

@@ -86,6 +86,11 @@ public:
     /// Per vertex, a sphere holding that vertex in every mesh of the batch: centre xyz and
     /// radius, mm (set by setPositions). Lets a view skip the vertices no mesh shows in it.
     const std::vector<std::array<double, 4>>& vertexBounds() const { return vertexBounds_; }
+    /// Per vertex, a cone holding the normal the contour tests read (the packed one) in every
+    /// mesh where the vertex has a tangent plane: unit axis xyz and half-angle in radians, pi
+    /// where nothing narrower holds. Set by run() and uploadShapes(), empty before. Lets a view
+    /// skip the vertices that face away in every mesh.
+    const std::vector<std::array<double, 4>>& normalCones() const { return normalCones_; }
     const gpu::Buffer& wedges() const { return wedges_; }
 
 private:
@@ -97,7 +102,9 @@ private:
     bool shapesOnly_ = false; // restored by uploadShapes: the other result buffers are stale
     gpu::ComputeProgram normalsProgram_, curvatureProgram_, derivativeProgram_;
     Wedges hostWedges_;
-    std::vector<std::array<double, 4>> vertexBounds_;
+    void setNormalCones(const std::vector<std::uint32_t>& shapes);
+
+    std::vector<std::array<double, 4>> vertexBounds_, normalCones_;
     gpu::Buffer wedgeOffsets_, wedges_;
     WedgeTexels wedgeTexels_;
     gpu::Buffer positions_, normals_, curvature_, directions_, derivatives_, shapes_, shapesC23_;

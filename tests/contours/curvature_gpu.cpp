@@ -5,6 +5,8 @@
 #include "test_common.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -140,6 +142,46 @@ TEST_CASE("curvature_gpu: the packed shape decodes to the full-precision values"
     REQUIRE(worstVector < 1e-4); // octahedral snorm16: about 3e-5
     REQUIRE(worstK < 1e-3);        // half floats: 2^-11 relative
     REQUIRE(worstC < 1e-7);        // half floats, down to their subnormal range
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("curvature_gpu: each vertex's normal cone holds its packed normal in every mesh")
+{
+    const std::vector<Mesh> meshes = bumpyTori();
+    const Eigen::Index nv = meshes[0].V.rows();
+    std::vector<float> positions;
+    for (const Mesh& m : meshes)
+        for (Eigen::Index v = 0; v < nv; ++v)
+            for (int c = 0; c < 3; ++c)
+                positions.push_back(static_cast<float>(m.V(v, c)));
+    GpuCurvature gpu(test::device(), meshes[0].F, nv);
+    gpu.setPositions(positions);
+    REQUIRE(gpu.normalCones().empty()); // nothing known before run()
+    gpu.run();
+    const GpuCurvature::Result r = gpu.download();
+    auto check = [&](const std::vector<std::array<double, 4>>& cones) {
+        REQUIRE(cones.size() == static_cast<size_t>(nv));
+        double widest = 0, excess = -1;
+        for (Eigen::Index v = 0; v < nv; ++v) {
+            const Eigen::Vector3d axis(cones[v][0], cones[v][1], cones[v][2]);
+            REQUIRE(axis.norm() == Approx(1.0).margin(1e-12));
+            widest = std::max(widest, cones[v][3]);
+            for (size_t m = 0; m < meshes.size(); ++m) {
+                const float* p = &r.packed[12 * (m * nv + v)];
+                const Eigen::Vector3d n(p[0], p[1], p[2]);
+                excess = std::max(excess, std::atan2(n.cross(axis).norm(), n.dot(axis)) - cones[v][3]);
+            }
+        }
+        INFO("widest cone " << widest << " rad, normals at most " << excess << " rad inside their cone's edge");
+        REQUIRE(excess < -1e-5); // every normal inside, with the cone's slack of 1e-4 to spare
+        REQUIRE(widest < 0.5);   // three similar tori: narrow cones, so views can use them
+    };
+    check(gpu.normalCones());
+    const std::vector<std::array<double, 4>> fromRun = gpu.normalCones();
+    gpu.setPositions(positions);
+    REQUIRE(gpu.normalCones().empty()); // stale with new positions
+    gpu.uploadShapes(gpu.downloadShapes());
+    REQUIRE(gpu.normalCones() == fromRun); // restored shapes (the curvature cache) give the same cones
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
 
