@@ -18,6 +18,7 @@ layout(binding = CONTOURS_BINDING_POSITIONS) uniform samplerBuffer positions;
 layout(binding = CONTOURS_BINDING_SHAPE) uniform usamplerBuffer shapes;
 layout(binding = CONTOURS_BINDING_SHAPE_C23) uniform usamplerBuffer shapesC23;
 layout(binding = CONTOURS_BINDING_VERTEX_LIST) uniform usamplerBuffer vertexList;
+layout(binding = CONTOURS_BINDING_SIGN_LOCKS) uniform usamplerBuffer signLocks;
 layout(binding = CONTOURS_BINDING_RADIAL_OUT, std430) restrict writeonly buffer Radial { uint radialOut[]; };
 layout(binding = CONTOURS_BINDING_WORK, std430) restrict buffer Work {
     uvec3 appendGroups; // pass 2's indirect dispatch size
@@ -55,8 +56,11 @@ uint radialWord(int index, uint flag, out bool listed)
     // +0 where undefined or zero, so that the word's sign is k_r's "below zero".
     kr = mix(0.0, clamp(kr, -1e30, 1e30), all(bvec2(radialDefined, kr != 0.0)));
 
+    // Where k_r keeps its sign on the whole one-ring for any view (GpuCurvature::signLockTexels)
+    // no zero crossing can mark the vertex: pass 2 need not look at its neighbours.
+    bool locked = ((texelFetch(signLocks, index >> 5).x >> (uint(index) & 31u)) & 1u) != 0u;
     uint bits = mix(0u, CONTOUR_SILHOUETTE, abs(ndotv) < thresholds.x) |
-                mix(0u, CONTOUR_SUGGESTIVE, all(bvec3(radialDefined, ndotv > 0.0, dwkr * thresholds.z > thresholds.y))) |
+                mix(0u, CONTOUR_SUGGESTIVE, all(bvec4(radialDefined, ndotv > 0.0, dwkr * thresholds.z > thresholds.y, !locked))) |
                 mix(0u, CONTOUR_LABELLED, all(bvec2((flag & VERTEX_LABELLED) != 0u, ndotv > -thresholds.x)));
     bits = mix(bits, 0u, (flag & VERTEX_EXCLUDED) != 0u);
     listed = all(bvec2(plane, bits != 0u));

@@ -69,10 +69,12 @@
 //   plain operands, and lavapipe then runs both sides with masks: pass 1 selects with mix()
 //   and all() instead (the ?: of toCamera alone cost 10% of a whole view);
 // - the body of a loop with a varying trip count costs several times the same code outside
-//   one (a grid-stride loop around the whole kernel halved its speed), so there is none.
+//   one (a grid-stride loop around the whole kernel halved its speed), so no kernel loops over
+//   vertices.
 // contours_radial.comp: per (mesh, vertex), the radial curvature and the vertex's own tests:
-// silhouette, labelled, and the suggestive pre-test (front-facing and D_w k_r over threshold),
-// and the list of the (mesh, vertex) pairs that passed one (a quarter of them on faces), so that
+// silhouette, labelled, and the suggestive pre-test (front-facing, D_w k_r over threshold, and
+// not sign-locked: GpuCurvature::signLockTexels, which takes a quarter of the pre-test's pairs
+// off pass 2), and the list of the pairs that passed one (a sixth of them on faces), so that
 // pass 2 visits only those: one atomic per subgroup (ballot), and the indirect dispatch size.
 // (T) marks texel-buffer bindings (gpu::TexelView).
 #define CONTOURS_GROUP_VERTICES 32    // pass 1: workgroups of 8 x 32 invocations (meshes x vertices)
@@ -96,7 +98,8 @@
 #define CONTOURS_BINDING_OUTPUT 9     // uint count, 3 pad, then candidates: uvec4(mesh, vertex, types, 0), vec4(world, depth), vec4(screen, 0, 0)
 #define CONTOURS_BINDING_WORK_TEXELS 11 // (T) R32UI view of WORK
 #define CONTOURS_WORK_HEADER 4u         // uints before the pairs in WORK
-#define CONTOURS_TEXEL_BINDINGS 0x9CFu  // bits of the (T) bindings above
+#define CONTOURS_BINDING_SIGN_LOCKS 12  // (T) R32UI: GpuCurvature::signLockTexels (pass 1: no suggestive pre-test where set)
+#define CONTOURS_TEXEL_BINDINGS 0x19CFu // bits of the (T) bindings above
 // The radial word: the bits of k_r as a float whose three lowest mantissa bits are replaced by
 // the vertex's own results (CONTOUR_SILHOUETTE, CONTOUR_LABELLED, and CONTOUR_SUGGESTIVE for
 // "passed the pre-test, check the one-ring"), or CONTOURS_NO_RADIAL without a tangent plane.

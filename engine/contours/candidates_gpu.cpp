@@ -289,7 +289,7 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
             gpu::transferToComputeBarrier(cmd);
             const std::initializer_list<gpu::Binding> buffers = {
                 &curvature_.positionTexels(), &curvature_.shapeTexels(), &curvature_.c23Texels(), &vertexListTexels_, &view_, &radial_,
-                &radialTexels_, &neighbourOffsetTexels_, &neighbourTexels_, &output_, &work_, &workTexels_};
+                &radialTexels_, &neighbourOffsetTexels_, &neighbourTexels_, &output_, &work_, &workTexels_, &curvature_.signLockTexels()};
             gpu::dispatchRaw(device_, cmd, radialProgram_, meshInvocations, rows, 1, buffers, nullptr, 0);
             gpu::computeToIndirectBarrier(cmd);
             gpu::dispatchIndirect(device_, cmd, program_, work_, 0, buffers, nullptr, 0);

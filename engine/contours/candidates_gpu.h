@@ -4,13 +4,16 @@
 // compact list with an atomic counter, then put in (mesh, vertex) order on the host (a counting
 // sort) so that the result does not depend on GPU scheduling. Two dispatches (shaders/shared.h
 // explains the choices): pass 1 computes every pair's radial curvature and own tests and lists
-// the pairs that passed one (about a quarter); pass 2, dispatched indirectly at that size, runs
+// the pairs that passed one (about a sixth); pass 2, dispatched indirectly at that size, runs
 // the one-ring zero-crossing test, culls to the rectangle and sphere and appends. Pass 1 visits
 // only the vertices that some face may show inside the culling rectangle and sphere (from
 // per-vertex bounding spheres over the batch) and their one-rings: a stroke's box costs a
 // fraction of a whole view. Nor does it visit the vertices that face away from the camera in
 // every face (from per-vertex normal cones, contours/curvature_gpu.h): on 230 synthetic faces,
-// 15% of the vertices in a three-quarter view and 35% in a profile.
+// 15% of the vertices in a three-quarter view and 35% in a profile. Pairs whose one-ring keeps
+// one sign of k_r for any view (GpuCurvature::signLockTexels) skip the zero-crossing test; the
+// reference differs there only if the view runs exactly along a neighbour's normal (k_r taken
+// as 0), which it reports as a near tie.
 // Needs subgroup ballot in compute shaders (every desktop GPU and lavapipe have it) and texel
 // buffers of #faces x #V texels (maxTexelBufferElements); throws Error naming what is missing.
 //
@@ -44,7 +47,7 @@ private:
     GpuCurvature& curvature_;
     void destroyBatchBuffers();
 
-    static constexpr std::uint32_t kBindings = 12; // shaders/shared.h CONTOURS_BINDING_*
+    static constexpr std::uint32_t kBindings = 13; // shaders/shared.h CONTOURS_BINDING_*
     gpu::ComputeProgram radialProgram_, program_;
     Neighbours rings_; // one-rings on the host, for listing the vertices a view needs
     std::vector<std::uint32_t> flags_; // VertexFlag per vertex, sent with the vertex list

@@ -41,6 +41,12 @@ std::vector<float> downloadBatch(gpu::Device& device, const gpu::Buffer& buffer,
     return out;
 }
 
+// Words of the sign-lock bit set: one bit per (mesh, vertex), at least one word.
+size_t signLockWords(std::uint32_t meshCount, Eigen::Index vertexCount)
+{
+    return std::max<size_t>(1, (size_t(meshCount) * size_t(vertexCount) + 31) / 32);
+}
+
 } // namespace
 
 float halfToFloat(std::uint16_t h)
@@ -79,6 +85,7 @@ GpuCurvature::GpuCurvature(gpu::Device& device, const Triangles& F, Eigen::Index
     uploadWedges(device_, F, vertexCount, wedgeOffsets_, wedges_);
     wedgeTexels_ = createWedgeTexels(device_, wedgeOffsets_, wedges_);
     hostWedges_ = buildWedges(F, vertexCount);
+    hostRings_ = buildNeighbours(hostWedges_);
     timer_ = gpu::createGpuTimer(device_);
 }
 
@@ -97,10 +104,11 @@ GpuCurvature::~GpuCurvature()
 
 void GpuCurvature::destroyBatchBuffers()
 {
-    for (gpu::TexelView* t : {&c23Texels_, &shapeTexels_, &directionTexels_, &curvatureTexels_, &normalTexels_, &positionTexels_})
+    for (gpu::TexelView* t :
+         {&signLockTexels_, &c23Texels_, &shapeTexels_, &directionTexels_, &curvatureTexels_, &normalTexels_, &positionTexels_})
         if (t->view)
             gpu::destroyTexelView(device_, *t);
-    for (gpu::Buffer* b : {&shapesC23_, &shapes_, &derivatives_, &directions_, &curvature_, &normals_, &positions_})
+    for (gpu::Buffer* b : {&signLocks_, &shapesC23_, &shapes_, &derivatives_, &directions_, &curvature_, &normals_, &positions_})
         if (b->buffer)
             gpu::destroyBuffer(device_, *b);
 }
@@ -129,9 +137,13 @@ void GpuCurvature::setPositions(const std::vector<float>& positions)
         directionTexels_ = gpu::createTexelView(device_, directions_, VK_FORMAT_R32G32B32A32_SFLOAT);
         shapeTexels_ = gpu::createTexelView(device_, shapes_, VK_FORMAT_R32G32B32A32_UINT);
         c23Texels_ = gpu::createTexelView(device_, shapesC23_, VK_FORMAT_R32_UINT);
+        signLocks_ = gpu::createBuffer(device_, signLockWords(meshCount, vertexCount_) * sizeof(std::uint32_t), usage);
+        signLockTexels_ = gpu::createTexelView(device_, signLocks_, VK_FORMAT_R32_UINT);
     }
     meshCount_ = meshCount;
     normalCones_.clear(); // until run() or uploadShapes()
+    const std::vector<std::uint32_t> noLocks(signLockWords(meshCount, vertexCount_), 0);
+    gpu::uploadBuffer(device_, signLocks_, noLocks.data(), noLocks.size() * sizeof(std::uint32_t));
     const auto nv = static_cast<size_t>(vertexCount_);
     vertexBounds_.assign(nv, {0, 0, 0, 0});
     for (size_t m = 0; m < meshCount; ++m)
@@ -177,15 +189,38 @@ double GpuCurvature::run()
     const double ms = gpu::timerMilliseconds(device_, timer_);
     std::vector<std::uint32_t> shapes(4 * static_cast<size_t>(meshCount_) * static_cast<size_t>(vertexCount_));
     gpu::readbackBuffer(device_, shapes_, shapes.data(), shapes.size() * 4);
-    setNormalCones(shapes);
+    setViewBounds(shapes);
     return ms;
 }
 
-void GpuCurvature::setNormalCones(const std::vector<std::uint32_t>& shapes)
+void GpuCurvature::setViewBounds(const std::vector<std::uint32_t>& shapes)
 {
+    const auto nv = static_cast<size_t>(vertexCount_);
+    // Sign locks: the sign of k1 where k1 and k2 share it (0 where they do not, or no plane).
+    std::vector<signed char> sign(shapes.size() / 4, 0);
+    for (size_t i = 0; i < sign.size(); ++i) {
+        const std::uint32_t* s = &shapes[4 * i];
+        const float k1 = halfToFloat(static_cast<std::uint16_t>(s[2] & 0xffff)), k2 = halfToFloat(static_cast<std::uint16_t>(s[2] >> 16));
+        const bool plane = s[0] != 0 || s[1] != 0;
+        sign[i] = plane && k1 * k2 > 0 ? (k1 > 0 ? 1 : -1) : 0;
+    }
+    std::vector<std::uint32_t> locks(signLockWords(meshCount_, vertexCount_), 0);
+    for (size_t v = 0; v < nv; ++v)
+        for (size_t m = 0; m < meshCount_; ++m) {
+            const size_t i = v * meshCount_ + m;
+            bool locked = sign[i] != 0;
+            for (std::uint32_t k = hostRings_.offsets[v]; locked && k < hostRings_.offsets[v + 1]; ++k) {
+                const size_t j = hostRings_.vertices[k] * size_t(meshCount_) + m;
+                const std::uint32_t* s = &shapes[4 * j];
+                locked = (s[0] == 0 && s[1] == 0) || sign[j] == sign[i]; // a neighbour without a plane is never read
+            }
+            if (locked)
+                locks[i / 32] |= 1u << (i % 32);
+        }
+    gpu::uploadBuffer(device_, signLocks_, locks.data(), locks.size() * sizeof(std::uint32_t));
+
     // The axis is the normalised mean normal, the half-angle the widest normal's angle to it
     // plus 1e-4 rad, far more than the float rounding between this decoder and the kernels'.
-    const auto nv = static_cast<size_t>(vertexCount_);
     normalCones_.assign(nv, {0, 0, 1, M_PI});
     std::vector<Eigen::Vector3d> normals(meshCount_);
     for (size_t v = 0; v < nv; ++v) {
@@ -229,7 +264,7 @@ void GpuCurvature::uploadShapes(const PackedShapes& p)
     gpu::uploadBuffer(device_, shapes_, p.shapes.data(), p.shapes.size() * 4);
     gpu::uploadBuffer(device_, shapesC23_, p.c23.data(), p.c23.size() * 4);
     shapesOnly_ = true;
-    setNormalCones(p.shapes);
+    setViewBounds(p.shapes);
 }
 
 GpuCurvature::Result GpuCurvature::download()

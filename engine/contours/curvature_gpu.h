@@ -91,6 +91,12 @@ public:
     /// where nothing narrower holds. Set by run() and uploadShapes(), empty before. Lets a view
     /// skip the vertices that face away in every mesh.
     const std::vector<std::array<double, 4>>& normalCones() const { return normalCones_; }
+    /// One bit per (mesh, vertex), bit i % 32 of texel i / 32 for batch index i: set where k_r
+    /// has one sign on the vertex's closed one-ring whatever the view (k1 and k2 of one sign at
+    /// the vertex and at each neighbour with a tangent plane), so that no zero crossing of k_r,
+    /// no suggestive contour, can touch it. Set by run() and uploadShapes(), all clear before.
+    const gpu::TexelView& signLockTexels() const { return signLockTexels_; }
+    const gpu::Buffer& signLocks() const { return signLocks_; }
     const gpu::Buffer& wedges() const { return wedges_; }
 
 private:
@@ -102,13 +108,15 @@ private:
     bool shapesOnly_ = false; // restored by uploadShapes: the other result buffers are stale
     gpu::ComputeProgram normalsProgram_, curvatureProgram_, derivativeProgram_;
     Wedges hostWedges_;
-    void setNormalCones(const std::vector<std::uint32_t>& shapes);
+    Neighbours hostRings_;
+    void setViewBounds(const std::vector<std::uint32_t>& shapes);
 
     std::vector<std::array<double, 4>> vertexBounds_, normalCones_;
     gpu::Buffer wedgeOffsets_, wedges_;
     WedgeTexels wedgeTexels_;
     gpu::Buffer positions_, normals_, curvature_, directions_, derivatives_, shapes_, shapesC23_;
-    gpu::TexelView positionTexels_, normalTexels_, curvatureTexels_, directionTexels_, shapeTexels_, c23Texels_;
+    gpu::Buffer signLocks_;
+    gpu::TexelView positionTexels_, normalTexels_, curvatureTexels_, directionTexels_, shapeTexels_, c23Texels_, signLockTexels_;
     gpu::GpuTimer timer_;
 };
 

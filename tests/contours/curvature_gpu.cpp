@@ -2,6 +2,8 @@
 #include "contours/curvature_gpu.h"
 #include "core/error.h"
 #include "geometry/primitives.h"
+#include "geometry/wedges.h"
+#include "gpu/buffers.h"
 #include "test_common.h"
 
 #include <Eigen/Geometry>
@@ -182,6 +184,63 @@ TEST_CASE("curvature_gpu: each vertex's normal cone holds its packed normal in e
     REQUIRE(gpu.normalCones().empty()); // stale with new positions
     gpu.uploadShapes(gpu.downloadShapes());
     REQUIRE(gpu.normalCones() == fromRun); // restored shapes (the curvature cache) give the same cones
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("curvature_gpu: sign locks mark the vertices whose one-ring has k1 and k2 of one sign")
+{
+    const std::vector<Mesh> meshes = bumpyTori();
+    const Eigen::Index nv = meshes[0].V.rows();
+    const auto meshCount = meshes.size();
+    std::vector<float> positions;
+    for (const Mesh& m : meshes)
+        for (Eigen::Index v = 0; v < nv; ++v)
+            for (int c = 0; c < 3; ++c)
+                positions.push_back(static_cast<float>(m.V(v, c)));
+    GpuCurvature gpu(test::device(), meshes[0].F, nv);
+    gpu.setPositions(positions);
+    auto lockBits = [&] {
+        std::vector<std::uint32_t> words((meshCount * nv + 31) / 32);
+        gpu::readbackBuffer(test::device(), gpu.signLocks(), words.data(), words.size() * 4);
+        return words;
+    };
+    for (const std::uint32_t w : lockBits())
+        REQUIRE(w == 0); // nothing locked before run()
+    gpu.run();
+    const GpuCurvature::Result r = gpu.download();
+    const std::vector<std::uint32_t> words = lockBits();
+    const Neighbours rings = buildNeighbours(buildWedges(meshes[0].F, nv));
+    // The sign of k1 where k1 k2 > 0 (the packed, half-float curvatures the kernels read).
+    auto sign = [&](size_t m, std::uint32_t v) {
+        const float* p = &r.packed[12 * (m * nv + v)];
+        return p[6] * p[7] > 0 ? (p[6] > 0 ? 1 : -1) : 0;
+    };
+    size_t locked = 0;
+    for (size_t m = 0; m < meshCount; ++m)
+        for (std::uint32_t v = 0; v < nv; ++v) {
+            bool expected = sign(m, v) != 0;
+            for (std::uint32_t k = rings.offsets[v]; k < rings.offsets[v + 1]; ++k) {
+                const std::uint32_t u = rings.vertices[k];
+                const bool plane = r.packed[12 * (m * nv + u)] != 0 || r.packed[12 * (m * nv + u) + 1] != 0 ||
+                                   r.packed[12 * (m * nv + u) + 2] != 0; // else never read: no lock broken
+                expected = expected && (!plane || sign(m, u) == sign(m, v));
+            }
+            const size_t i = v * meshCount + m; // batch layout
+            const bool got = (words[i / 32] >> (i % 32)) & 1u;
+            if (got != expected)
+                FAIL("mesh " << m << " vertex " << v << ": lock " << got << ", expected " << expected);
+            locked += got;
+        }
+    // A torus is convex outside and saddle-shaped inside: both kinds occur.
+    INFO(locked << " of " << meshCount * nv << " locked");
+    REQUIRE(locked > meshCount * nv / 4);
+    REQUIRE(locked < meshCount * nv * 3 / 4);
+    // New positions clear them; shapes restored from a cache set them again.
+    gpu.setPositions(positions);
+    for (const std::uint32_t w : lockBits())
+        REQUIRE(w == 0);
+    gpu.uploadShapes(gpu.downloadShapes());
+    REQUIRE(lockBits() == words);
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
 
