@@ -9,7 +9,8 @@
 // rectangle and sphere is pass 2's, which projects the vertices it appends anyway. Every lane
 // does the same work: no branch a SIMD row would run for one lane.
 // Each invocation does CONTOURS_MESHES_PER_INVOCATION meshes of one vertex, and lists them all
-// with one atomic per subgroup: on lavapipe that atomic, not the arithmetic, was the cost.
+// with one atomic per subgroup: on lavapipe the listing's ballot, atomic and broadcast cost as
+// much per subgroup as a good part of the arithmetic (shaders/shared.h).
 #include "shared.h"
 
 layout(local_size_x = BATCH_GROUP_MESHES, local_size_y = CONTOURS_GROUP_VERTICES, local_size_z = 1) in;

@@ -58,11 +58,11 @@
 //   kernels keep few of them: large read-only data are texel buffers (one vector gather per
 //   row), pass 1 writes a single word per (mesh, vertex) and lists pairs with one atomic per
 //   subgroup, and pass 2 stores only what it appends, also with one atomic per subgroup;
-// - an atomic waits for the stores before it to leave the core (a locked instruction on x86),
-//   so with the radial words streaming out, the listing atomic cost a third of pass 1. Each
-//   pass 1 invocation therefore does CONTOURS_MESHES_PER_INVOCATION meshes of its vertex (a
-//   loop of constant trip count), and a subgroup lists 64 pairs with one atomic:
-//   the whole view took 29% less;
+// - listing costs per subgroup: a ballot, an elected atomic on the one shared counter and a
+//   broadcast took about 10 ms per 150,000 subgroups in a microbenchmark, half of it the
+//   counter's cache line moving between the two cores. So each pass 1 invocation does
+//   CONTOURS_MESHES_PER_INVOCATION meshes of its vertex (a loop of constant trip count), and a
+//   subgroup lists 64 pairs at once: the whole view took 29% less;
 // - a branch is run for every lane of a row when any lane takes it, so every lane does the
 //   same work in pass 1 and the neighbour loop of pass 2 has a trip count of zero where the
 //   vertex failed the pre-test. glslang makes branches of if, of ?: and && on anything but

@@ -11,9 +11,9 @@
 // fraction of a whole view. Nor does it visit the vertices that face away from the camera in
 // every face (from per-vertex normal cones, contours/curvature_gpu.h): on 230 synthetic faces,
 // 15% of the vertices in a three-quarter view and 35% in a profile. Pairs whose one-ring keeps
-// one sign of k_r for any view (GpuCurvature::signLockTexels) skip the zero-crossing test; the
-// reference differs there only if the view runs exactly along a neighbour's normal (k_r taken
-// as 0), which it reports as a near tie.
+// one sign of k_r for any view (GpuCurvature::signLockTexels) skip the zero-crossing test, which
+// they cannot pass: even where the view runs exactly along a neighbour's normal (its k_r taken
+// as 0), that neighbour is the end nearer zero, and it has no pre-test.
 // Needs subgroup ballot in compute shaders (every desktop GPU and lavapipe have it) and texel
 // buffers of #faces x #V texels (maxTexelBufferElements); throws Error naming what is missing.
 //

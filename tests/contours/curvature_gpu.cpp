@@ -1,6 +1,7 @@
 #include "contours/curvature.h"
 #include "contours/curvature_gpu.h"
 #include "core/error.h"
+#include "geometry/mesh_batch.h"
 #include "geometry/primitives.h"
 #include "geometry/wedges.h"
 #include "gpu/buffers.h"
@@ -45,11 +46,7 @@ TEST_CASE("curvature_gpu: matches the double-precision CPU reference on a batch 
 {
     const std::vector<Mesh> meshes = bumpyTori();
     const Eigen::Index nv = meshes[0].V.rows();
-    std::vector<float> positions;
-    for (const Mesh& m : meshes)
-        for (Eigen::Index v = 0; v < nv; ++v)
-            for (int c = 0; c < 3; ++c)
-                positions.push_back(static_cast<float>(m.V(v, c)));
+    const std::vector<float> positions = meshMajorPositions(meshes);
 
     GpuCurvature gpu(test::device(), meshes[0].F, nv);
     gpu.setPositions(positions);
@@ -151,11 +148,7 @@ TEST_CASE("curvature_gpu: each vertex's normal cone holds its packed normal in e
 {
     const std::vector<Mesh> meshes = bumpyTori();
     const Eigen::Index nv = meshes[0].V.rows();
-    std::vector<float> positions;
-    for (const Mesh& m : meshes)
-        for (Eigen::Index v = 0; v < nv; ++v)
-            for (int c = 0; c < 3; ++c)
-                positions.push_back(static_cast<float>(m.V(v, c)));
+    const std::vector<float> positions = meshMajorPositions(meshes);
     GpuCurvature gpu(test::device(), meshes[0].F, nv);
     gpu.setPositions(positions);
     REQUIRE(gpu.normalCones().empty()); // nothing known before run()
@@ -192,11 +185,7 @@ TEST_CASE("curvature_gpu: sign locks mark the vertices whose one-ring has k1 and
     const std::vector<Mesh> meshes = bumpyTori();
     const Eigen::Index nv = meshes[0].V.rows();
     const auto meshCount = meshes.size();
-    std::vector<float> positions;
-    for (const Mesh& m : meshes)
-        for (Eigen::Index v = 0; v < nv; ++v)
-            for (int c = 0; c < 3; ++c)
-                positions.push_back(static_cast<float>(m.V(v, c)));
+    const std::vector<float> positions = meshMajorPositions(meshes);
     GpuCurvature gpu(test::device(), meshes[0].F, nv);
     gpu.setPositions(positions);
     auto lockBits = [&] {
