@@ -13,6 +13,9 @@ struct BenchOptions {
     int repeat = 10;     ///< timed repetitions; the median is reported
     int meshes = 230;    ///< batch size for dataset kernels (the thesis' 230 cached faces)
     int vertices = 6000; ///< vertices per mesh
+    /// contours: SPIR-V files of pass 1 and pass 2 variants (ContourKernels), each timed against
+    /// the built-in kernel in the same process; empty: none.
+    std::string pass1, pass2;
 };
 
 struct Benchmark {

@@ -13,6 +13,7 @@
 #include "dataset/face_params.h"
 #include "evaluation/contour_eval.h"
 #include "geometry/camera.h"
+#include "gpu/compute.h"
 #include "model/head_model.h"
 
 #include <algorithm>
@@ -46,6 +47,49 @@ BenchFaces syntheticFaces(int meshes, int vertices)
         out.meshes.push_back(Mesh{V.middleRows(skin.begin, skin.size()), F});
     }
     return out;
+}
+
+// A variant of the cloud's kernels (--pass1, --pass2) against the built-in ones: the builds
+// alternate in one process, in ABBA order, so that this machine's swings (up to 2x between
+// runs, from the hypervisor's steal time) fall on both alike. Prints both medians and fastest
+// runs, and whether the variant's cloud equals the built-in one.
+void compareKernels(const BenchOptions& options, gpu::Device& device, GpuCurvature& curvature, const std::vector<std::uint32_t>& flags,
+                    const Camera& camera, const ContourParams& params, const std::string& tag, std::ostream& out)
+{
+    ContourKernels kernels = builtInContourKernels();
+    std::vector<std::uint32_t> pass1, pass2;
+    if (!options.pass1.empty()) {
+        pass1 = gpu::readSpirvFile(options.pass1);
+        kernels.radial = {pass1.data(), pass1.size() * sizeof(std::uint32_t)};
+    }
+    if (!options.pass2.empty()) {
+        pass2 = gpu::readSpirvFile(options.pass2);
+        kernels.contours = {pass2.data(), pass2.size() * sizeof(std::uint32_t)};
+    }
+    GpuCandidates builtIn(device, curvature, flags), variant(device, curvature, flags, kernels);
+    std::vector<double> builtInMs, variantMs;
+    std::vector<Candidate> builtInCloud, variantCloud;
+    for (int r = 0; r < options.repeat + 1; ++r) { // the first round sizes the output buffers
+        for (int k = 0; k < 2; ++k) {
+            const bool variantNow = (k == 1) == (r % 2 == 0);
+            double ms = 0;
+            std::vector<Candidate> cloud = (variantNow ? variant : builtIn).build(camera, params, &ms);
+            if (r > 0)
+                (variantNow ? variantMs : builtInMs).push_back(ms);
+            (variantNow ? variantCloud : builtInCloud) = std::move(cloud);
+        }
+    }
+    out << "# variant: pass 1 " << (options.pass1.empty() ? "built-in" : options.pass1) << ", pass 2 "
+        << (options.pass2.empty() ? "built-in" : options.pass2) << "\n";
+    out << "candidates_gpu_ab_builtin_" << tag << "_ms " << median(builtInMs) << " ms\n";
+    out << "candidates_gpu_ab_variant_" << tag << "_ms " << median(variantMs) << " ms\n";
+    out << "candidates_gpu_ab_builtin_fastest_" << tag << "_ms " << *std::min_element(builtInMs.begin(), builtInMs.end()) << " ms\n";
+    out << "candidates_gpu_ab_variant_fastest_" << tag << "_ms " << *std::min_element(variantMs.begin(), variantMs.end()) << " ms\n";
+    out << "candidates_ab_variant_count_" << tag << " " << variantCloud.size() << " points\n";
+    const auto same = [](const Candidate& a, const Candidate& b) { return a.mesh == b.mesh && a.vertex == b.vertex && a.types == b.types; };
+    const bool identical = std::equal(builtInCloud.begin(), builtInCloud.end(), variantCloud.begin(), variantCloud.end(), same);
+    out << "# the variant's cloud " << (identical ? "is identical to" : "DIFFERS from") << " the built-in one (" << builtInCloud.size()
+        << " points)\n";
 }
 
 } // namespace
@@ -115,6 +159,8 @@ void benchContours(const BenchOptions& options, std::ostream& out)
         out << "candidates_gpu_stroke_box_with_listing_and_readback_" << tag << "_ms " << median(culledWall) << " ms\n";
         out << "candidates_count_" << tag << " " << count << " points\n";
         out << "candidates_stroke_box_count_" << tag << " " << strokeCount << " points\n";
+        if (!options.pass1.empty() || !options.pass2.empty())
+            compareKernels(options, device, curvature, faces.flags, camera, params, tag, out);
     }
 
     // Single-threaded CPU reference on a subset, scaled to the whole batch (it is linear in meshes).

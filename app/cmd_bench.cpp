@@ -40,6 +40,8 @@ void addBenchCommand(CLI::App& root)
     cmd->add_option("--repeat", options->repeat, "Timed repetitions (median reported)")->check(CLI::Range(1, 10000));
     cmd->add_option("--meshes", options->meshes, "Meshes per batch")->check(CLI::Range(1, 100000));
     cmd->add_option("--vertices", options->vertices, "Vertices per mesh")->check(CLI::Range(4, 10000000));
+    cmd->add_option("--pass1", options->pass1, "contours: SPIR-V of a pass-1 variant, timed against the built-in kernel");
+    cmd->add_option("--pass2", options->pass2, "contours: SPIR-V of a pass-2 variant, timed against the built-in kernel");
     cmd->callback([=] {
         if (*list || name->empty()) {
             for (const Benchmark& b : benchmarks())

@@ -125,7 +125,13 @@ std::vector<Candidate> sortedCandidates(const std::vector<CandidateGpu>& raw, st
 
 } // namespace
 
-GpuCandidates::GpuCandidates(gpu::Device& device, GpuCurvature& curvature, const std::vector<std::uint32_t>& flags)
+ContourKernels builtInContourKernels()
+{
+    return {gpu::shaderCode(contours_radial_comp), gpu::shaderCode(contours_comp)};
+}
+
+GpuCandidates::GpuCandidates(gpu::Device& device, GpuCurvature& curvature, const std::vector<std::uint32_t>& flags,
+                             const ContourKernels& kernels)
     : device_(device), curvature_(curvature)
 {
     const auto nv = static_cast<size_t>(curvature.vertexCount());
@@ -138,10 +144,15 @@ GpuCandidates::GpuCandidates(gpu::Device& device, GpuCurvature& curvature, const
     vkGetPhysicalDeviceProperties2(device_.physical, &properties);
     if (!(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) || !(subgroup.supportedOperations & VK_SUBGROUP_FEATURE_BALLOT_BIT))
         fail("GpuCandidates: the device (", device_.name, ") has no subgroup ballot in compute shaders");
-    radialProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(contours_radial_comp), kBindings, 0,
+    radialProgram_ = gpu::createComputeProgram(device_, kernels.radial, kBindings, 0,
                                                1u << CONTOURS_BINDING_VIEW, CONTOURS_TEXEL_BINDINGS);
-    program_ = gpu::createComputeProgram(device_, gpu::shaderCode(contours_comp), kBindings, 0, 1u << CONTOURS_BINDING_VIEW,
-                                         CONTOURS_TEXEL_BINDINGS);
+    try { // a variant's pass 2 may be what fails (ContourKernels): release pass 1's program
+        program_ = gpu::createComputeProgram(device_, kernels.contours, kBindings, 0, 1u << CONTOURS_BINDING_VIEW,
+                                             CONTOURS_TEXEL_BINDINGS);
+    } catch (...) {
+        gpu::destroyComputeProgram(device_, radialProgram_);
+        throw;
+    }
     rings_ = buildNeighbours(curvature.hostWedges());
     // A vertex without neighbours (isolated) still needs a non-empty buffer.
     const std::vector<std::uint32_t> ringVertices = rings_.vertices.empty() ? std::vector<std::uint32_t>{0} : rings_.vertices;

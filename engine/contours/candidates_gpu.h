@@ -26,11 +26,22 @@
 
 namespace facesketch {
 
+/// The SPIR-V of the two passes. The built-in pair is shaders/contours_radial.comp.glsl and
+/// shaders/contours.comp.glsl; another must keep their bindings and the radial word, and may
+/// change the workgroup size (read from its SPIR-V). `facesketch bench contours --pass1 FILE
+/// --pass2 FILE` times such a variant against the built-in kernels in one process.
+struct ContourKernels {
+    gpu::ShaderCode radial;   ///< pass 1
+    gpu::ShaderCode contours; ///< pass 2
+};
+ContourKernels builtInContourKernels();
+
 class GpuCandidates {
 public:
     /// `curvature` must have run and must outlive this object; `flags` holds #V VertexFlag bits
-    /// (or is empty).
-    GpuCandidates(gpu::Device& device, GpuCurvature& curvature, const std::vector<std::uint32_t>& flags);
+    /// (or is empty). `kernels`' code need only live through the constructor.
+    GpuCandidates(gpu::Device& device, GpuCurvature& curvature, const std::vector<std::uint32_t>& flags,
+                  const ContourKernels& kernels = builtInContourKernels());
     ~GpuCandidates();
     GpuCandidates(const GpuCandidates&) = delete;
     GpuCandidates& operator=(const GpuCandidates&) = delete;

@@ -2,6 +2,9 @@
 
 #include "core/error.h"
 
+#include <cstring>
+#include <fstream>
+#include <iterator>
 #include <vector>
 
 namespace facesketch::gpu {
@@ -25,6 +28,27 @@ void readLocalSize(ShaderCode code, std::uint32_t localSize[3])
         i += length;
     }
     fail("SPIR-V compute shader declares no literal local_size");
+}
+
+std::vector<std::uint32_t> readSpirvFile(const std::filesystem::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        fail(path.string(), ": cannot open the SPIR-V file");
+    const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad())
+        fail(path.string(), ": read error");
+    if (bytes.size() % 4 != 0)
+        fail(path.string(), ": ", bytes.size(), " bytes is not a whole number of SPIR-V words");
+    std::vector<std::uint32_t> words(bytes.size() / 4);
+    std::memcpy(words.data(), bytes.data(), bytes.size());
+    try {
+        std::uint32_t localSize[3];
+        readLocalSize({words.data(), bytes.size()}, localSize);
+    } catch (const Error& e) {
+        fail(path.string(), ": ", e.what());
+    }
+    return words;
 }
 
 VkShaderModule createShaderModule(Device& device, ShaderCode code)

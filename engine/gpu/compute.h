@@ -15,7 +15,9 @@
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <initializer_list>
+#include <vector>
 
 namespace facesketch::gpu {
 
@@ -30,6 +32,11 @@ ShaderCode shaderCode(const std::uint32_t (&words)[N])
 {
     return {words, sizeof(words)};
 }
+
+/// A SPIR-V module read from a file (glslangValidator -V output), for kernel variants measured
+/// against the embedded ones. Throws Error naming the file if it cannot be read or its words
+/// are not a SPIR-V module with a literal LocalSize.
+std::vector<std::uint32_t> readSpirvFile(const std::filesystem::path& path);
 
 /// The LocalSize of a compute shader's entry point; throws Error if the SPIR-V has none.
 void readLocalSize(ShaderCode code, std::uint32_t localSize[3]);

@@ -5,6 +5,11 @@
 #include "shaders/shared.h"
 #include "test_common.h"
 
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
 using namespace facesketch;
 
 TEST_CASE("compute: the workgroup size is read from the SPIR-V")
@@ -71,4 +76,31 @@ TEST_CASE("buffers: a texel view must cover whole texels")
     gpu::destroyTexelView(d, view);
     gpu::destroyBuffer(d, buffer);
     REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("compute: a SPIR-V file reads back word for word, and a bad one is an error naming it")
+{
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "facesketch_test_spirv";
+    std::filesystem::create_directories(dir);
+    const gpu::ShaderCode embedded = gpu::shaderCode(normals_comp);
+    const auto write = [&](const std::string& name, const void* data, std::size_t bytes) {
+        std::ofstream(dir / name, std::ios::binary).write(static_cast<const char*>(data), static_cast<std::streamsize>(bytes));
+        return dir / name;
+    };
+    const std::vector<std::uint32_t> words = gpu::readSpirvFile(write("normals.spv", embedded.words, embedded.sizeBytes));
+    REQUIRE(words == std::vector<std::uint32_t>(embedded.words, embedded.words + embedded.sizeBytes / 4));
+
+    const auto message = [](const std::filesystem::path& path) {
+        try {
+            gpu::readSpirvFile(path);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    REQUIRE_THAT(message(dir / "missing.spv"), Catch::Contains("missing.spv: cannot open"));
+    REQUIRE_THAT(message(write("odd.spv", embedded.words, 10)), Catch::Contains("odd.spv: 10 bytes is not a whole number"));
+    const std::uint32_t garbage[8] = {1, 2, 3, 4, 5, 6, 7, 8};
+    REQUIRE_THAT(message(write("garbage.spv", garbage, sizeof(garbage))), Catch::Contains("garbage.spv: not a SPIR-V module"));
+    std::filesystem::remove_all(dir);
 }
