@@ -4,9 +4,37 @@
 #include "core/error.h"
 
 #include <algorithm>
+#include <array>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 
 namespace facesketch::app {
+
+namespace {
+
+// The machine's CPU time from /proc/stat: total and stolen by the hypervisor (jiffies), or
+// zeros where there is no /proc/stat. On a shared virtual machine steal is what makes figures
+// swing by 2x between runs, so each benchmark reports how much of its time was stolen.
+std::array<unsigned long long, 2> cpuTimes()
+{
+    std::ifstream in("/proc/stat");
+    std::string line, label;
+    if (!std::getline(in, line))
+        return {0, 0};
+    std::istringstream fields(line);
+    fields >> label;
+    unsigned long long total = 0, value = 0, steal = 0;
+    for (int i = 0; fields >> value; ++i) {
+        if (i < 8) // user nice system idle iowait irq softirq steal; guest time is inside user
+            total += value;
+        if (i == 7)
+            steal = value;
+    }
+    return {total, steal};
+}
+
+} // namespace
 
 const std::vector<Benchmark>& benchmarks()
 {
@@ -51,7 +79,12 @@ void addBenchCommand(CLI::App& root)
         bool ran = false;
         for (const Benchmark& b : benchmarks())
             if (*name == "all" || *name == b.name) {
+                const auto before = cpuTimes();
                 b.run(*options, std::cout);
+                const auto after = cpuTimes();
+                if (after[0] > before[0])
+                    std::cout << "# " << b.name << ": " << 100.0 * double(after[1] - before[1]) / double(after[0] - before[0])
+                              << "% of the machine's CPU time was stolen by the hypervisor (figures swing with it)\n";
                 ran = true;
             }
         if (!ran)
