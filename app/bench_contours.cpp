@@ -17,6 +17,7 @@
 #include "model/head_model.h"
 
 #include <algorithm>
+#include <cmath>
 
 
 namespace facesketch::app {
@@ -90,6 +91,17 @@ void compareKernels(const BenchOptions& options, gpu::Device& device, GpuCurvatu
     const bool identical = std::equal(builtInCloud.begin(), builtInCloud.end(), variantCloud.begin(), variantCloud.end(), same);
     out << "# the variant's cloud " << (identical ? "is identical to" : "DIFFERS from") << " the built-in one (" << builtInCloud.size()
         << " points)\n";
+    if (identical) { // same points: how far apart the variant puts them
+        double world = 0, screen = 0;
+        for (size_t i = 0; i < builtInCloud.size(); ++i) {
+            const Candidate &a = builtInCloud[i], &b = variantCloud[i];
+            for (int k = 0; k < 3; ++k)
+                world = std::max(world, double(std::abs(a.world[k] - b.world[k])));
+            for (int k = 0; k < 2; ++k)
+                screen = std::max(screen, double(std::abs(a.screen[k] - b.screen[k])));
+        }
+        out << "# largest difference of a point: " << world << " mm in the world, " << screen << " px on the screen\n";
+    }
 }
 
 } // namespace
