@@ -13,7 +13,10 @@
 // much per subgroup as a good part of the arithmetic (shaders/shared.h).
 #include "shared.h"
 
-layout(local_size_x = BATCH_GROUP_MESHES, local_size_y = CONTOURS_GROUP_VERTICES, local_size_z = 1) in;
+// A workgroup does every mesh of a few vertices (up to 256 meshes) rather than 64 meshes of many
+// vertices, so that each core reads one stretch of the batch layout: the gathers here wait on
+// memory more than on anything else (BENCHMARKS.md).
+layout(local_size_x = CONTOURS_GROUP_MESH_INVOCATIONS, local_size_y = CONTOURS_GROUP_VERTICES, local_size_z = 1) in;
 
 layout(binding = CONTOURS_BINDING_POSITIONS) uniform samplerBuffer positions;
 layout(binding = CONTOURS_BINDING_SHAPE) uniform usamplerBuffer shapes;

@@ -288,9 +288,9 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
         view.counts[2] = capacity_;
         view.counts[3] = listCount;
         gpu::uploadBuffer(device_, view_, &view, sizeof(view));
-        // Pass 1: one invocation per listed vertex and CONTOURS_MESHES_PER_INVOCATION meshes (a
-        // workgroup's BATCH_GROUP_MESHES invocations along x do 8 x 8 neighbouring meshes, so
-        // whole workgroups cover every mesh). No kernel loops over vertices.
+        // Pass 1: one invocation per listed vertex and CONTOURS_MESHES_PER_INVOCATION meshes; a
+        // row of BATCH_GROUP_MESHES invocations along x does 64 neighbouring meshes, interleaved
+        // (shaders/contours_radial.comp.glsl). No kernel loops over vertices.
         const std::uint32_t rows = listCount;
         const std::uint32_t meshInvocations = (meshCount + CONTOURS_MESHES_PER_INVOCATION - 1) / CONTOURS_MESHES_PER_INVOCATION;
         gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
