@@ -78,7 +78,7 @@
 // pass 2 visits only those: one atomic per subgroup (ballot), and the indirect dispatch size.
 // (T) marks texel-buffer bindings (gpu::TexelView).
 #define CONTOURS_GROUP_MESH_INVOCATIONS 32 // pass 1: workgroups of 32 x 4 invocations (meshes x vertices),
-#define CONTOURS_GROUP_VERTICES 4          //   256 meshes of 4 vertices (6-14% faster than 8 x 32, BENCHMARKS.md)
+#define CONTOURS_GROUP_VERTICES 4          //   256 meshes of 4 vertices (whole view 6-9% faster than 8 x 32 at 5,230)
 #define CONTOURS_MESHES_PER_INVOCATION 8u // pass 1: meshes per invocation, so 64 per SIMD row and per listing atomic
 #define CONTOURS_GROUP_PAIRS 256      // pass 2: workgroups of 256 listed pairs
 #define CONTOURS_BINDING_POSITIONS 0  // (T) RGBA32F, batch layout
