@@ -8,17 +8,16 @@
 #include "contours/curvature.h"
 #include "contours/curvature_gpu.h"
 #include "core/stopwatch.h"
-#include "geometry/mesh_batch.h"
 #include "dataset/face_model.h"
 #include "dataset/face_params.h"
 #include "evaluation/contour_eval.h"
 #include "geometry/camera.h"
+#include "geometry/mesh_batch.h"
 #include "gpu/compute.h"
 #include "model/head_model.h"
 
 #include <algorithm>
 #include <cmath>
-
 
 namespace facesketch::app {
 
@@ -34,9 +33,9 @@ struct BenchFaces {
 
 BenchFaces syntheticFaces(int meshes, int vertices)
 {
-    const dataset::Resolution resolution = vertices < 2500    ? dataset::Resolution::Low
-                                           : vertices < 12000 ? dataset::Resolution::High
-                                                              : dataset::Resolution::Ultra;
+    const dataset::Resolution resolution = vertices < 2500 ? dataset::Resolution::Low
+        : vertices < 12000                                 ? dataset::Resolution::High
+                                                           : dataset::Resolution::Ultra;
     const dataset::FaceTopology topology = dataset::buildFaceTopology(resolution);
     const dataset::Manifest& m = topology.labels;
     const dataset::Component& skin = *m.component("skin");
@@ -45,7 +44,7 @@ BenchFaces syntheticFaces(int meshes, int vertices)
     out.flags = evaluation::skinContourFlags(m);
     for (int i = 0; i < meshes; ++i) {
         const Vertices V = dataset::synthesizeFace(topology, dataset::sampleFaceParams(1, i));
-        out.meshes.push_back(Mesh{V.middleRows(skin.begin, skin.size()), F});
+        out.meshes.push_back(Mesh { V.middleRows(skin.begin, skin.size()), F });
     }
     return out;
 }
@@ -55,17 +54,17 @@ BenchFaces syntheticFaces(int meshes, int vertices)
 // runs, from the hypervisor's steal time) fall on both alike. Prints both medians and fastest
 // runs, and whether the variant's cloud equals the built-in one.
 void compareKernels(const BenchOptions& options, gpu::Device& device, GpuCurvature& curvature, const std::vector<std::uint32_t>& flags,
-                    const Camera& camera, const ContourParams& params, const std::string& tag, std::ostream& out)
+    const Camera& camera, const ContourParams& params, const std::string& tag, std::ostream& out)
 {
     ContourKernels kernels = builtInContourKernels();
     std::vector<std::uint32_t> pass1, pass2;
     if (!options.pass1.empty()) {
         pass1 = gpu::readSpirvFile(options.pass1);
-        kernels.radial = {pass1.data(), pass1.size() * sizeof(std::uint32_t)};
+        kernels.radial = { pass1.data(), pass1.size() * sizeof(std::uint32_t) };
     }
     if (!options.pass2.empty()) {
         pass2 = gpu::readSpirvFile(options.pass2);
-        kernels.contours = {pass2.data(), pass2.size() * sizeof(std::uint32_t)};
+        kernels.contours = { pass2.data(), pass2.size() * sizeof(std::uint32_t) };
     }
     GpuCandidates builtIn(device, curvature, flags), variant(device, curvature, flags, kernels);
     std::vector<double> builtInMs, variantMs;

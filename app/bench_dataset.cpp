@@ -17,11 +17,12 @@ namespace facesketch::app {
 void benchSynth(const BenchOptions&, std::ostream& out)
 {
     namespace fs = std::filesystem;
-    const fs::path root = fs::temp_directory_path() / ("facesketch-bench-synth-" + std::to_string(std::random_device{}()));
+    const fs::path root = fs::temp_directory_path() / ("facesketch-bench-synth-" + std::to_string(std::random_device {}()));
     fs::create_directories(root);
-    out << "# 250 identities, neutral faces only, " << std::thread::hardware_concurrency() << " threads, written to " << root.string() << "\n";
+    out << "# 250 identities, neutral faces only, " << std::thread::hardware_concurrency() << " threads, written to " << root.string()
+        << "\n";
     try {
-        for (auto resolution : {dataset::Resolution::Low, dataset::Resolution::High, dataset::Resolution::Ultra}) {
+        for (auto resolution : { dataset::Resolution::Low, dataset::Resolution::High, dataset::Resolution::Ultra }) {
             dataset::SynthOptions o;
             o.resolution = resolution;
             Stopwatch clock;

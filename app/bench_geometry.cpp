@@ -84,7 +84,7 @@ void benchRender(const BenchOptions& options, std::ostream& out)
     {
         Renderer renderer(device, 1024, 1024, 4);
         renderer.addMesh(sphere);
-        const Camera camera = frameMesh(sphere, {20, 10}, 1024, 1024);
+        const Camera camera = frameMesh(sphere, { 20, 10 }, 1024, 1024);
         renderer.render(camera);
         std::vector<double> ms;
         for (int r = 0; r < options.repeat; ++r) {

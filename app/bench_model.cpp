@@ -32,7 +32,7 @@ void benchTrain(const BenchOptions& options, std::ostream& out)
     fs::create_directories(dir);
     // The thesis' full-covariance model files (Gunnarsson 2010): 338 MB at 863 vertices (its
     // low resolution), 667 MB at 6,174 (high).
-    const double thesisMb[3] = {338.0, 667.0, 667.0};
+    const double thesisMb[3] = { 338.0, 667.0, 667.0 };
     std::stringstream names(list);
     for (std::string name; std::getline(names, name, ',');) {
         const dataset::Resolution res = dataset::parseResolution(name);
@@ -41,8 +41,8 @@ void benchTrain(const BenchOptions& options, std::ostream& out)
         const fs::path folder = dir / name;
         dataset::writeSynthDataset(folder, s);
         const dataset::Dataset ds = dataset::openDataset(folder);
-        out << "# " << name << ": " << ds.manifest.vertexCount << " vertices, "
-            << ds.manifest.samplesWithRole(dataset::Role::Train).size() << " train faces, default train options\n";
+        out << "# " << name << ": " << ds.manifest.vertexCount << " vertices, " << ds.manifest.samplesWithRole(dataset::Role::Train).size()
+            << " train faces, default train options\n";
 
         const Stopwatch clock;
         const stats::FaceModel model = model::trainHeadModel(ds, {});
@@ -51,9 +51,8 @@ void benchTrain(const BenchOptions& options, std::ostream& out)
         stats::saveFaceModel(model, file);
         const double mb = static_cast<double>(fs::file_size(file)) / 1e6;
         out << "model_size_" << name << "_mb " << mb << " MB\n";
-        out << "model_size_" << name << "_thesis_ratio " << thesisMb[static_cast<int>(res)] / mb
-            << " x (thesis " << thesisMb[static_cast<int>(res)] << " MB"
-            << (res == dataset::Resolution::Ultra ? " at 6,174 vertices)\n" : ")\n");
+        out << "model_size_" << name << "_thesis_ratio " << thesisMb[static_cast<int>(res)] / mb << " x (thesis "
+            << thesisMb[static_cast<int>(res)] << " MB" << (res == dataset::Resolution::Ultra ? " at 6,174 vertices)\n" : ")\n");
 
         // One full reconstruction from 15% of a held-out face's skin vertices: every segment,
         // clean-up and correlation, blended, then the rigid parts placed.

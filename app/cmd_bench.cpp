@@ -21,7 +21,7 @@ std::array<unsigned long long, 2> cpuTimes()
     std::ifstream in("/proc/stat");
     std::string line, label;
     if (!std::getline(in, line))
-        return {0, 0};
+        return { 0, 0 };
     std::istringstream fields(line);
     fields >> label;
     unsigned long long total = 0, value = 0, steal = 0;
@@ -31,7 +31,7 @@ std::array<unsigned long long, 2> cpuTimes()
         if (i == 7)
             steal = value;
     }
-    return {total, steal};
+    return { total, steal };
 }
 
 } // namespace
@@ -39,12 +39,15 @@ std::array<unsigned long long, 2> cpuTimes()
 const std::vector<Benchmark>& benchmarks()
 {
     static const std::vector<Benchmark> all = {
-        {"normals", "area-weighted vertex normals of a batch of meshes: GPU kernel vs single-threaded CPU", benchNormals},
-        {"render", "offscreen render of a lit mesh to an image, with readback", benchRender},
-        {"contours", "curvature pass and per-view candidate cloud of 230 synthetic faces (--vertices picks low, high or ultra): GPU vs single-threaded CPU", benchContours},
-        {"synth", "250 synthetic identities at each resolution, 250 ICT identities, 10 identities with their 36 poses", benchSynth},
-        {"stats", "statistics core at 6,000 vertices: conditional inference, reconstruction, one mixture fit", benchStatsCore},
-        {"train", "face model on the synthetic low, high and ultra sets: training time, file size, reconstruction latency", benchTrain},
+        { "normals", "area-weighted vertex normals of a batch of meshes: GPU kernel vs single-threaded CPU", benchNormals },
+        { "render", "offscreen render of a lit mesh to an image, with readback", benchRender },
+        { "contours",
+            "curvature pass and per-view candidate cloud of 230 synthetic faces (--vertices picks low, high or ultra): GPU vs "
+            "single-threaded CPU",
+            benchContours },
+        { "synth", "250 synthetic identities at each resolution, 250 ICT identities, 10 identities with their 36 poses", benchSynth },
+        { "stats", "statistics core at 6,000 vertices: conditional inference, reconstruction, one mixture fit", benchStatsCore },
+        { "train", "face model on the synthetic low, high and ultra sets: training time, file size, reconstruction latency", benchTrain },
     };
     return all;
 }

@@ -4,8 +4,8 @@
 #include "commands.h"
 
 #include "contours/candidates_gpu.h"
-#include "contours/curvature_cache.h"
 #include "contours/contour_lines.h"
+#include "contours/curvature_cache.h"
 #include "contours/curvature_gpu.h"
 #include "core/error.h"
 #include "core/stopwatch.h"
@@ -24,8 +24,8 @@ namespace facesketch::app {
 namespace {
 
 struct Faces {
-    std::vector<Mesh> meshes;        // the faces whose contours form the cloud
-    Mesh shown;                      // the face drawn with its contour lines (the mean face for a dataset)
+    std::vector<Mesh> meshes;         // the faces whose contours form the cloud
+    Mesh shown;                       // the face drawn with its contour lines (the mean face for a dataset)
     std::vector<std::uint32_t> flags; // VertexFlag per vertex
     std::map<std::string, std::vector<int>> labelled;
 };
@@ -38,7 +38,7 @@ Faces loadFaces(const std::filesystem::path& input, int maxFaces)
     Faces f;
     if (!std::filesystem::is_directory(input)) {
         f.shown = readMesh(input);
-        f.meshes = {f.shown};
+        f.meshes = { f.shown };
         return f;
     }
     const dataset::Dataset d = dataset::openDataset(input);
@@ -66,13 +66,14 @@ Faces loadFaces(const std::filesystem::path& input, int maxFaces)
     return f;
 }
 
-const glm::vec4 silhouetteColour{0.05f, 0.05f, 0.05f, 1}, suggestiveColour{0.1f, 0.35f, 0.85f, 1}, labelledColour{0.8f, 0.2f, 0.1f, 1};
+const glm::vec4 silhouetteColour { 0.05f, 0.05f, 0.05f, 1 }, suggestiveColour { 0.1f, 0.35f, 0.85f, 1 },
+    labelledColour { 0.8f, 0.2f, 0.1f, 1 };
 
 void addLines(Renderer& r, const ContourLines& lines)
 {
-    r.addLines(lines.silhouette, {silhouetteColour});
-    r.addLines(lines.suggestive, {suggestiveColour});
-    r.addLines(lines.labelled, {labelledColour});
+    r.addLines(lines.silhouette, { silhouetteColour });
+    r.addLines(lines.suggestive, { suggestiveColour });
+    r.addLines(lines.labelled, { labelledColour });
 }
 
 } // namespace
@@ -91,8 +92,8 @@ void addContoursCommand(CLI::App& root)
     cmd->add_option("--silhouette", o->silhouette, "Silhouette threshold on |n.v| (default: 0.14 sqrt(863 / #V))");
     cmd->add_flag("--perspective", o->perspective, "Perspective instead of orthographic projection");
     cmd->add_flag("--no-cache", o->noCache,
-                  "Compute the curvature of the faces even if the cache ($FACESKETCH_CACHE_DIR, else "
-                  "$XDG_CACHE_HOME/facesketch or ~/.cache/facesketch) holds it, and do not write it");
+        "Compute the curvature of the faces even if the cache ($FACESKETCH_CACHE_DIR, else "
+        "$XDG_CACHE_HOME/facesketch or ~/.cache/facesketch) holds it, and do not write it");
     cmd->callback([o] { writeContourPictures(*o); });
 }
 
@@ -104,7 +105,8 @@ void writeContourPictures(const ContourPictureOptions& options)
         Stopwatch clock;
         const Faces faces = loadFaces(o->input, o->maxFaces);
         const Eigen::Index nv = faces.shown.V.rows();
-        const Camera camera = frameMesh(faces.shown, view, o->size, o->size, o->perspective ? Projection::Perspective : Projection::Orthographic);
+        const Camera camera
+            = frameMesh(faces.shown, view, o->size, o->size, o->perspective ? Projection::Perspective : Projection::Orthographic);
         ContourParams params;
         params.silhouetteThreshold = o->silhouette >= 0 ? o->silhouette : defaultSilhouetteThreshold(nv);
         params.suggestiveThreshold = o->suggestive;
@@ -122,8 +124,8 @@ void writeContourPictures(const ContourPictureOptions& options)
                 GpuCurvature gpuCurvature(device, faces.shown.F, nv);
                 const std::vector<float> positions = meshMajorPositions(faces.meshes);
                 gpuCurvature.setPositions(positions);
-                const CachedCurvature pass =
-                    runCurvatureCached(gpuCurvature, faces.shown.F, positions, o->noCache ? std::filesystem::path() : defaultCacheFolder());
+                const CachedCurvature pass = runCurvatureCached(
+                    gpuCurvature, faces.shown.F, positions, o->noCache ? std::filesystem::path() : defaultCacheFolder());
                 if (!pass.note.empty())
                     std::cerr << "warning: " << pass.note << "\n";
                 GpuCandidates candidates(device, gpuCurvature, faces.flags);
@@ -142,7 +144,7 @@ void writeContourPictures(const ContourPictureOptions& options)
 
             r.clear();
             MeshStyle paper; // hides lines behind the face without drawing it
-            paper.color = {1, 1, 1, 1};
+            paper.color = { 1, 1, 1, 1 };
             paper.lit = false;
             r.addMesh(faces.shown, paper);
             addLines(r, lines);
@@ -150,13 +152,13 @@ void writeContourPictures(const ContourPictureOptions& options)
 
             std::vector<glm::vec3> points;
             for (const Candidate& c : cloud)
-                points.push_back({c.world[0], c.world[1], c.world[2]});
+                points.push_back({ c.world[0], c.world[1], c.world[2] });
             MeshStyle faint;
-            faint.color = {0.93f, 0.93f, 0.93f, 1};
+            faint.color = { 0.93f, 0.93f, 0.93f, 1 };
             r.clear();
             r.addMesh(faces.shown, faint);
             if (!points.empty())
-                r.addPoints(points, {{0.1f, 0.65f, 0.2f, 1}}, 2.0f);
+                r.addPoints(points, { { 0.1f, 0.65f, 0.2f, 1 } }, 2.0f);
             writePng(prefix + "-cloud.png", r.render(camera));
 
             // Density: candidates per 4x4-pixel cell, log-scaled, blue (few) to red (many).

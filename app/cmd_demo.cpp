@@ -27,7 +27,7 @@ void addDemoCommand(CLI::App& root)
         dataset::writeSynthDataset(folder / "faces", synth);
         std::cout << "synthesized " << synth.identities << " faces into " << (folder / "faces").string() << " in " << clock.seconds()
                   << " s\n";
-        for (const char* view : {"front", "34"}) {
+        for (const char* view : { "front", "34" }) {
             ContourPictureOptions pictures;
             pictures.input = (folder / "faces").string();
             pictures.output = (folder / (std::string("contours-") + view)).string();

@@ -55,10 +55,10 @@ void runObserve(const ObserveCommand& c)
               << (c.region.empty() ? "at random" : "region " + c.region) << ": " << 100.0 * s.measuredFraction
               << "% of the vertices; clean-up " << (o.reconstruct.cleanUp ? "on" : "off") << ", correlation "
               << stats::correlationName(o.reconstruct.correlation) << "\n";
-    std::cout << std::setw(14) << "" << std::setw(12) << "mean mm" << std::setw(12) << "max mm" << "\n"
+    std::cout << std::setw(14) << "" << std::setw(12) << "mean mm" << std::setw(12) << "max mm"
+              << "\n"
               << std::setw(14) << "reconstruction" << std::setw(12) << s.meanError << std::setw(12) << s.maxError << "\n"
-              << std::setw(14) << "mean face" << std::setw(12) << s.meanFaceMeanError << std::setw(12)
-              << s.meanFaceMaxError << "\n";
+              << std::setw(14) << "mean face" << std::setw(12) << s.meanFaceMeanError << std::setw(12) << s.meanFaceMaxError << "\n";
     std::cout << "ratio " << std::setprecision(3) << s.meanError / s.meanFaceMeanError << " of the mean face's error, "
               << s.millisecondsPerFace << " ms per face\n";
 }
@@ -67,24 +67,23 @@ void addObserveCommand(CLI::App& eval)
 {
     auto c = std::make_shared<ObserveCommand>();
     auto* cmd = eval.add_subcommand("observe", "Reconstruct held-out faces from some of their own vertices; errors in mm");
-    cmd->footer(
-        "For every `test` face of DATASET, measures a random fraction of its skin vertices (or all those of one\n"
-        "region) in 3D, reconstructs the face with MODEL and prints the mean and max per-vertex error in mm,\n"
-        "beside the error of the model's mean face.\n"
-        "Regions: nose, mouth, chin, eyes, brows, mouth_chin, eyes_brows (skin vertices within --radius mm of\n"
-        "the region's landmarks and contours in the manifest, on the mean face), or segment:N (the core of\n"
-        "segment N as `facesketch train` lists them).");
+    cmd->footer("For every `test` face of DATASET, measures a random fraction of its skin vertices (or all those of one\n"
+                "region) in 3D, reconstructs the face with MODEL and prints the mean and max per-vertex error in mm,\n"
+                "beside the error of the model's mean face.\n"
+                "Regions: nose, mouth, chin, eyes, brows, mouth_chin, eyes_brows (skin vertices within --radius mm of\n"
+                "the region's landmarks and contours in the manifest, on the mean face), or segment:N (the core of\n"
+                "segment N as `facesketch train` lists them).");
     cmd->add_option("model", c->model, "Model file (facesketch train)")->required();
     cmd->add_option("dataset", c->dataset, "Dataset folder the model was trained on")->required();
     cmd->add_option("--fraction", c->fraction, "Fraction of the vertices measured, drawn per face")
-        ->capture_default_str()->check(CLI::Range(1e-9, 1.0));
+        ->capture_default_str()
+        ->check(CLI::Range(1e-9, 1.0));
     cmd->add_option("--region", c->region, "Measure exactly one region's vertices instead (see below)");
-    cmd->add_option("--radius", c->radius, "Region radius around its landmarks, mm")
-        ->capture_default_str()->check(CLI::Range(0.0, 1000.0));
+    cmd->add_option("--radius", c->radius, "Region radius around its landmarks, mm")->capture_default_str()->check(CLI::Range(0.0, 1000.0));
     cmd->add_option("--correlation", c->correlation,
-                    "How measured segments inform the others: joint (all measurements condition one whole-face "
-                    "model), thesis (4.2.5: segment latents completed by the correlation mixture) or off")
-        ->check(CLI::IsMember({"joint", "thesis", "off"}))
+           "How measured segments inform the others: joint (all measurements condition one whole-face "
+           "model), thesis (4.2.5: segment latents completed by the correlation mixture) or off")
+        ->check(CLI::IsMember({ "joint", "thesis", "off" }))
         ->capture_default_str();
     cmd->add_flag("--no-correlation", c->noCorrelation, "Same as --correlation off: unmeasured segments keep the mean face");
     cmd->add_flag("--no-cleanup", c->noCleanUp, "Skip the clean-up projection of each segment (thesis 4.2.4)");

@@ -25,10 +25,10 @@ namespace {
 struct EvalContoursCommand {
     std::string model, dataset, output, views = "front;profile;34";
     int size = 1024, renders = 3;
-    double suggestive = ContourParams{}.suggestiveThreshold;
+    double suggestive = ContourParams {}.suggestiveThreshold;
     double errorScale = 10.0;
-    int refinements = evaluation::ContourEvalOptions{}.refinements;
-    int trim = evaluation::ContourEvalOptions{}.trim;
+    int refinements = evaluation::ContourEvalOptions {}.refinements;
+    int trim = evaluation::ContourEvalOptions {}.trim;
     bool curve = false;
 };
 
@@ -37,7 +37,7 @@ std::vector<Mesh> skinMeshes(const dataset::Dataset& ds, dataset::Role role, con
     const Eigen::MatrixXd rows = dataset::loadShapes(ds, role, "skin");
     std::vector<Mesh> out;
     for (Eigen::Index i = 0; i < rows.rows(); ++i)
-        out.push_back({dataset::unflatten(rows.row(i)), F});
+        out.push_back({ dataset::unflatten(rows.row(i)), F });
     if (names)
         for (const dataset::Sample* s : ds.manifest.samplesWithRole(role))
             names->push_back(s->name);
@@ -49,7 +49,7 @@ std::vector<std::pair<std::string, ViewAngles>> parseViews(const std::string& te
     std::vector<std::pair<std::string, ViewAngles>> views;
     std::stringstream in(text);
     for (std::string name; std::getline(in, name, ';');)
-        views.push_back({name, parseView(name)});
+        views.push_back({ name, parseView(name) });
     if (views.empty())
         fail("--views: no view given");
     return views;
@@ -65,7 +65,7 @@ void printTable(const std::vector<evaluation::ContourEvalResult>& results)
     std::map<std::pair<std::string, int>, Row> rows;
     std::vector<std::string> order;
     for (const auto& r : results) {
-        Row& row = rows[{r.view, static_cast<int>(r.mapping)}];
+        Row& row = rows[{ r.view, static_cast<int>(r.mapping) }];
         if (std::find(order.begin(), order.end(), r.view) == order.end())
             order.push_back(r.view);
         row.mean += r.meanError;
@@ -76,14 +76,16 @@ void printTable(const std::vector<evaluation::ContourEvalResult>& results)
     }
     std::cout << std::fixed << std::setprecision(2) << std::left << std::setw(9) << "view" << std::setw(19) << "mapping" << std::right
               << std::setw(8) << "points" << std::setw(11) << "mean mm" << std::setw(10) << "max mm" << std::setw(16) << "mean face mm"
-              << std::setw(8) << "ratio" << "\n";
+              << std::setw(8) << "ratio"
+              << "\n";
     for (const std::string& view : order)
         for (int mapping = 0; mapping < 3; ++mapping) {
-            const Row& row = rows[{view, mapping}];
-            std::cout << std::left << std::setw(9) << view << std::setw(19) << evaluation::mappingName(static_cast<evaluation::ContourMapping>(mapping))
-                      << std::right << std::setw(8) << std::setprecision(0) << row.points / row.n << std::setprecision(2) << std::setw(11)
-                      << row.mean / row.n << std::setw(10) << row.max << std::setw(16) << row.meanFace / row.n << std::setw(8)
-                      << std::setprecision(3) << row.mean / row.meanFace << std::setprecision(2) << "\n";
+            const Row& row = rows[{ view, mapping }];
+            std::cout << std::left << std::setw(9) << view << std::setw(19)
+                      << evaluation::mappingName(static_cast<evaluation::ContourMapping>(mapping)) << std::right << std::setw(8)
+                      << std::setprecision(0) << row.points / row.n << std::setprecision(2) << std::setw(11) << row.mean / row.n
+                      << std::setw(10) << row.max << std::setw(16) << row.meanFace / row.n << std::setw(8) << std::setprecision(3)
+                      << row.mean / row.meanFace << std::setprecision(2) << "\n";
         }
 }
 
@@ -110,8 +112,8 @@ void writeErrorRenders(const EvalContoursCommand& c, const std::vector<evaluatio
             renderer.clear();
             MeshStyle style;
             renderer.addMesh(r.reconstruction, style, colours);
-            const std::filesystem::path file =
-                std::filesystem::path(c.output) / (r.face + "-" + r.view + "-" + evaluation::mappingName(r.mapping) + ".png");
+            const std::filesystem::path file
+                = std::filesystem::path(c.output) / (r.face + "-" + r.view + "-" + evaluation::mappingName(r.mapping) + ".png");
             writePng(file, renderer.render(frameMesh(r.reconstruction, parseView(r.view), 512, 512)));
             ++written;
         }
@@ -146,7 +148,7 @@ void runEvalContours(const EvalContoursCommand& c)
     gpu::ScopedDevice device;
     const std::vector<evaluation::ContourEvalResult> results = evaluation::evaluateContours(*device, data, options);
     std::cout << "# " << data.testFaces.size() << " test faces, cloud of " << data.candidateFaces.size() << " faces, " << m.vertexCount()
-               << " skin vertices, " << c.refinements << " refinements, " << c.trim << " trimming rounds, " << clock.seconds() << " s\n";
+              << " skin vertices, " << c.refinements << " refinements, " << c.trim << " trimming rounds, " << clock.seconds() << " s\n";
     printTable(results);
     if (!c.output.empty())
         writeErrorRenders(c, results);
@@ -156,9 +158,9 @@ void runEvalContours(const EvalContoursCommand& c)
     // Thesis figure 4.22: the same measurement with models trained on the first N train faces.
     const Eigen::MatrixXd train = dataset::loadShapes(ds, dataset::Role::Train, "skin");
     const int prn = model::skinLandmark(ds.manifest, "prn");
-    options.views = {options.views.front()};
+    options.views = { options.views.front() };
     std::cout << "# error against the number of training faces, view " << options.views.front().first << "\n";
-    for (int n : {4, 10, 25, 50, 100, 182}) {
+    for (int n : { 4, 10, 25, 50, 100, 182 }) {
         if (n > train.rows())
             break;
         Stopwatch trainClock;
@@ -168,15 +170,15 @@ void runEvalContours(const EvalContoursCommand& c)
         evaluation::ContourEvalData d = data;
         d.model = &subset;
         const std::vector<evaluation::ContourEvalResult> r = evaluation::evaluateContours(*device, d, options);
-        double sums[3] = {0, 0, 0}, meanFace = 0;
+        double sums[3] = { 0, 0, 0 }, meanFace = 0;
         for (const auto& x : r) {
             sums[static_cast<int>(x.mapping)] += x.meanError;
             meanFace += x.meanFaceMean;
         }
         const double faces = static_cast<double>(r.size()) / 3.0;
         std::cout << "training_faces " << n << "  known-vertex " << sums[0] / faces << " mm  nearest-candidate " << sums[1] / faces
-                  << " mm  2d " << sums[2] / faces << " mm  mean-face " << meanFace / r.size() << " mm  (" << trainClock.seconds()
-                  << " s)" << std::endl;
+                  << " mm  2d " << sums[2] / faces << " mm  mean-face " << meanFace / r.size() << " mm  (" << trainClock.seconds() << " s)"
+                  << std::endl;
     }
 }
 
@@ -189,7 +191,9 @@ void addEvalContoursCommand(CLI::App& eval)
     cmd->add_option("model", c->model, "Model file from `facesketch train`")->required();
     cmd->add_option("dataset", c->dataset, "The dataset it was trained on (its test faces are scored)")->required();
     cmd->add_option("--views", c->views, "Views separated by ';': front, profile, 34 or AZ,EL")->capture_default_str();
-    cmd->add_option("--size", c->size, "Image size in pixels for the screen-space mapping")->capture_default_str()->check(CLI::Range(64, 8192));
+    cmd->add_option("--size", c->size, "Image size in pixels for the screen-space mapping")
+        ->capture_default_str()
+        ->check(CLI::Range(64, 8192));
     cmd->add_option("--suggestive", c->suggestive, "Suggestive contour threshold")->capture_default_str();
     cmd->add_option("--refinements", c->refinements, "Re-mappings against the reconstruction's own contours (0: the thesis)")
         ->capture_default_str()

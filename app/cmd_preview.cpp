@@ -17,12 +17,12 @@ namespace {
 glm::vec4 partColour(const std::string& component)
 {
     if (component == "skin")
-        return {0.80f, 0.66f, 0.58f, 1};
+        return { 0.80f, 0.66f, 0.58f, 1 };
     if (component.rfind("eye", 0) == 0)
-        return {0.93f, 0.93f, 0.90f, 1};
+        return { 0.93f, 0.93f, 0.90f, 1 };
     if (component.rfind("teeth", 0) == 0)
-        return {0.95f, 0.93f, 0.85f, 1};
-    return {0.75f, 0.40f, 0.42f, 1}; // tongue, gums
+        return { 0.95f, 0.93f, 0.85f, 1 };
+    return { 0.75f, 0.40f, 0.42f, 1 }; // tongue, gums
 }
 
 struct PreviewOptions {
@@ -57,8 +57,8 @@ void writeDatasetPreview(const PreviewOptions& o)
         renderer.clear();
         renderer.addMesh(mesh, {}, colours);
         for (int view = 0; view < 2; ++view) {
-            const Image image = renderer.render(frameMesh(first, view ? ViewAngles{90, 0} : ViewAngles{0, 0}, cell, cell,
-                                                          Projection::Orthographic, 0.08));
+            const Image image = renderer.render(
+                frameMesh(first, view ? ViewAngles { 90, 0 } : ViewAngles { 0, 0 }, cell, cell, Projection::Orthographic, 0.08));
             const int x0 = (i % columns) * cell, y0 = ((i / columns) * 2 + view) * cell;
             for (int y = 0; y < cell; ++y)
                 std::copy_n(image.at(0, y), 4 * cell, grid.at(x0, y0 + y));
@@ -76,7 +76,9 @@ void addPreviewCommand(CLI::App& root)
     auto* cmd = root.add_subcommand("preview", "Render a grid of a dataset's faces, front above profile, to a PNG");
     cmd->add_option("dataset", o->dataset, "Dataset folder")->required();
     cmd->add_option("-o,--output", o->output, "PNG file to write")->required();
-    cmd->add_option("--count", o->count, "Faces in the grid (the first ones in the manifest)")->capture_default_str()->check(CLI::Range(1, 64));
+    cmd->add_option("--count", o->count, "Faces in the grid (the first ones in the manifest)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 64));
     cmd->add_option("--size", o->size, "Pixels per cell")->capture_default_str()->check(CLI::Range(64, 2048));
     cmd->callback([o] { writeDatasetPreview(*o); });
 }

@@ -22,7 +22,7 @@ void addRenderCommand(CLI::App& root)
     cmd->add_option("--view", o->view, "front, profile, 34 (three-quarter) or AZ,EL in degrees")->capture_default_str();
     cmd->add_option("--width", o->width, "Image width in pixels")->capture_default_str()->check(CLI::Range(16, 16384));
     cmd->add_option("--height", o->height, "Image height in pixels")->capture_default_str()->check(CLI::Range(16, 16384));
-    cmd->add_option("--samples", o->samples, "MSAA samples (1 or 4)")->capture_default_str()->check(CLI::IsMember({1, 4}));
+    cmd->add_option("--samples", o->samples, "MSAA samples (1 or 4)")->capture_default_str()->check(CLI::IsMember({ 1, 4 }));
     cmd->add_flag("--perspective", o->perspective, "Perspective instead of orthographic projection");
     cmd->callback([o] {
         const ViewAngles view = parseView(o->view);
@@ -34,8 +34,8 @@ void addRenderCommand(CLI::App& root)
             {
                 Renderer renderer(device, o->width, o->height, o->samples);
                 renderer.addMesh(mesh);
-                image = renderer.render(frameMesh(mesh, view, o->width, o->height,
-                                                  o->perspective ? Projection::Perspective : Projection::Orthographic));
+                image = renderer.render(
+                    frameMesh(mesh, view, o->width, o->height, o->perspective ? Projection::Perspective : Projection::Orthographic));
             }
             writePng(o->output, image);
         }

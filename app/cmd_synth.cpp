@@ -37,12 +37,12 @@ Mesh componentMesh(const Vertices& V, const Manifest& m, const Component& c)
 glm::vec4 componentColour(const std::string& name)
 {
     if (name.rfind("eye", 0) == 0)
-        return {0.93f, 0.93f, 0.9f, 1};
+        return { 0.93f, 0.93f, 0.9f, 1 };
     if (name.rfind("teeth", 0) == 0)
-        return {0.95f, 0.93f, 0.85f, 1};
+        return { 0.95f, 0.93f, 0.85f, 1 };
     if (name == "tongue")
-        return {0.8f, 0.42f, 0.42f, 1};
-    return {0.82f, 0.68f, 0.6f, 1};
+        return { 0.8f, 0.42f, 0.42f, 1 };
+    return { 0.82f, 0.68f, 0.6f, 1 };
 }
 
 // Preview colours of the skin: lips between the outer lip contours, eyebrows along theirs.
@@ -56,18 +56,18 @@ std::vector<glm::vec4> skinColours(const FaceTopology& t, glm::vec4 skin)
     for (int v : C.at("lip_lower_outer"))
         lipRows[t.skin[static_cast<size_t>(v)].col].second = t.skin[static_cast<size_t>(v)].row;
     std::set<std::pair<int, int>> brows; // (row, col) on an eyebrow
-    for (const char* name : {"eyebrow_l", "eyebrow_r"})
+    for (const char* name : { "eyebrow_l", "eyebrow_r" })
         for (int v : C.at(name))
-            brows.insert({t.skin[static_cast<size_t>(v)].row, t.skin[static_cast<size_t>(v)].col});
+            brows.insert({ t.skin[static_cast<size_t>(v)].row, t.skin[static_cast<size_t>(v)].col });
     const int browRows = (t.rowKnot[2] - t.rowKnot[1]) / 3; // 0 at low resolution: rows are tall
     for (size_t i = 0; i < t.skin.size(); ++i) {
         const SkinVertex& sv = t.skin[i];
         auto it = lipRows.find(sv.col);
         if (it != lipRows.end() && sv.row >= it->second.first && sv.row <= it->second.second)
-            colours[i] = {0.72f, 0.42f, 0.40f, 1};
+            colours[i] = { 0.72f, 0.42f, 0.40f, 1 };
         for (int dr = 0; dr <= browRows; ++dr) // the brow row and those just above it
-            if (brows.count({sv.row + dr, sv.col}))
-                colours[i] = {0.35f, 0.26f, 0.2f, 1};
+            if (brows.count({ sv.row + dr, sv.col }))
+                colours[i] = { 0.35f, 0.26f, 0.2f, 1 };
     }
     return colours;
 }
@@ -101,15 +101,15 @@ void writePreview(const std::string& path, const FaceTopology& topology, const s
                         for (Eigen::Index v = 0; v < part.V.rows(); ++v) {
                             const Eigen::RowVector3d d = (part.V.row(v) - centre).normalized();
                             colours.push_back(d.z() > 0.97 ? glm::vec4(0.08f, 0.06f, 0.05f, 1)
-                                              : d.z() > 0.88 ? glm::vec4(0.33f, 0.22f, 0.12f, 1)
-                                                             : style.color);
+                                    : d.z() > 0.88         ? glm::vec4(0.33f, 0.22f, 0.12f, 1)
+                                                           : style.color);
                         }
                     }
                     renderer.addMesh(part, style, colours);
                 }
                 // One fixed frame for every face, so sizes compare across the grid.
-                const Camera camera = frameSphere({0, -35, view ? 20 : 40}, 105, view ? ViewAngles{90, 0} : ViewAngles{0, 0},
-                                                  cell, cell, Projection::Orthographic, 0.02);
+                const Camera camera = frameSphere({ 0, -35, view ? 20 : 40 }, 105, view ? ViewAngles { 90, 0 } : ViewAngles { 0, 0 }, cell,
+                    cell, Projection::Orthographic, 0.02);
                 const Image image = renderer.render(camera);
                 const int x0 = (i % columns) * cell, y0 = ((i / columns) * 2 + view) * cell;
                 for (int y = 0; y < cell; ++y)
@@ -133,14 +133,17 @@ void addSynthCommand(CLI::App& root)
     auto* cmd = root.add_subcommand("synth", "Generate a standardised dataset of synthetic adult faces (and their poses)");
     cmd->add_option("-o,--output", o->output, "Dataset folder to write (replaced atomically if it is a dataset)");
     cmd->add_option("--identities", o->synth.identities, "Number of faces (split train/contour/test as 182:48:20)")
-        ->capture_default_str()->check(CLI::Range(1, 100000));
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100000));
     cmd->add_option("--resolution", o->resolution, "low (~900 vertices), high (~6,000) or ultra (~25,000)")
-        ->capture_default_str()->check(CLI::IsMember({"low", "high", "ultra"}));
+        ->capture_default_str()
+        ->check(CLI::IsMember({ "low", "high", "ultra" }));
     cmd->add_option("--seed", o->synth.seed, "Random seed; equal seeds give byte-identical datasets")->capture_default_str();
     cmd->add_flag("--poses", o->synth.poses, "Also write the 36 poses (neutral, 21 expressions, 14 visemes)");
     cmd->add_option("--pose-identities", o->synth.poseIdentities, "Only the first N identities get poses (default: all)")
         ->check(CLI::Range(0, 100000));
-    cmd->add_option("--threads", o->synth.threads, "Worker threads (0: all hardware threads)")->capture_default_str()
+    cmd->add_option("--threads", o->synth.threads, "Worker threads (0: all hardware threads)")
+        ->capture_default_str()
         ->check(CLI::Range(0, 256));
     cmd->add_option("--preview", o->preview, "PNG grid of faces, front above profile");
     cmd->add_option("--preview-count", o->previewCount, "Faces in the preview")->capture_default_str()->check(CLI::Range(1, 64));
@@ -153,9 +156,9 @@ void addSynthCommand(CLI::App& root)
         if (!o->output.empty()) {
             Stopwatch clock;
             writeSynthDataset(o->output, o->synth);
-            const int poses = o->synth.poses ? 36 * (o->synth.poseIdentities < 0 ? o->synth.identities
-                                                                                  : std::min(o->synth.poseIdentities, o->synth.identities))
-                                             : 0;
+            const int poses = o->synth.poses
+                ? 36 * (o->synth.poseIdentities < 0 ? o->synth.identities : std::min(o->synth.poseIdentities, o->synth.identities))
+                : 0;
             std::cout << "wrote " << o->output << ": " << o->synth.identities << " " << o->resolution << " faces, " << poses
                       << " poses, seed " << o->synth.seed << " (" << clock.seconds() << " s)\n";
         }

@@ -25,15 +25,15 @@ void addEvalContoursCommand(CLI::App& eval);
 
 /// What `facesketch contours` draws (also used by `facesketch demo`).
 struct ContourPictureOptions {
-    std::string input;                ///< dataset folder or mesh file
-    std::string output = "contours";  ///< prefix of the PNGs
+    std::string input;               ///< dataset folder or mesh file
+    std::string output = "contours"; ///< prefix of the PNGs
     std::string view = "front";
     int size = 1024;
     int maxFaces = 230;
-    double suggestive = ContourParams{}.suggestiveThreshold;
-    double silhouette = -1;           ///< negative: the resolution-dependent default
+    double suggestive = ContourParams {}.suggestiveThreshold;
+    double silhouette = -1; ///< negative: the resolution-dependent default
     bool perspective = false;
-    bool noCache = false;             ///< compute the curvature even if a cache file holds it
+    bool noCache = false; ///< compute the curvature even if a cache file holds it
 };
 /// Writes PREFIX-face.png, -sketch.png, -cloud.png and -density.png; prints a summary.
 void writeContourPictures(const ContourPictureOptions& options);

@@ -8,7 +8,7 @@
 int main(int argc, char** argv)
 {
     using namespace facesketch;
-    CLI::App root{"FaceSketch: sketch 3D faces and pose them into expressions.", "facesketch"};
+    CLI::App root { "FaceSketch: sketch 3D faces and pose them into expressions.", "facesketch" };
     root.set_version_flag("--version", "facesketch 0.1.0");
     root.require_subcommand(1);
     app::addDemoCommand(root);

@@ -18,14 +18,17 @@ bool validationFailures = false;
 struct ValidationListener : Catch::TestEventListenerBase {
     using TestEventListenerBase::TestEventListenerBase;
 
-    void testCaseStarting(const Catch::TestCaseInfo&) override { facesketch::test::validationBaseline() = facesketch::gpu::validationMessageCount(); }
+    void testCaseStarting(const Catch::TestCaseInfo&) override
+    {
+        facesketch::test::validationBaseline() = facesketch::gpu::validationMessageCount();
+    }
 
     void testCaseEnded(const Catch::TestCaseStats& stats) override
     {
         const std::uint64_t messages = facesketch::gpu::validationMessageCount() - facesketch::test::validationBaseline();
         if (messages > 0) {
             std::fprintf(stderr, "FAILED: %llu Vulkan validation message(s) during test case '%s'\n",
-                         static_cast<unsigned long long>(messages), stats.testInfo.name.c_str());
+                static_cast<unsigned long long>(messages), stats.testInfo.name.c_str());
             validationFailures = true;
         }
     }

@@ -33,7 +33,7 @@ gpu::Device& device()
     // for the rest of a process that uses the GPU. ctest runs each test case in its own process.
     fedisableexcept(FE_ALL_EXCEPT);
     if (!holder())
-        holder().emplace(gpu::DeviceOptions{.validation = true, .requireValidation = true});
+        holder().emplace(gpu::DeviceOptions { .validation = true, .requireValidation = true });
     return **holder();
 }
 

@@ -37,5 +37,4 @@ void writeText(const std::filesystem::path& path, const std::string& text);
 } // namespace facesketch::test
 
 /// Fails the test if the validation layer reported anything since the test case started.
-#define REQUIRE_NO_VALIDATION_MESSAGES() \
-    REQUIRE(::facesketch::gpu::validationMessageCount() == ::facesketch::test::validationBaseline())
+#define REQUIRE_NO_VALIDATION_MESSAGES() REQUIRE(::facesketch::gpu::validationMessageCount() == ::facesketch::test::validationBaseline())

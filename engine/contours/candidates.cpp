@@ -40,8 +40,8 @@ double meanEdgeLength(const Mesh& mesh)
 }
 
 std::vector<Candidate> contourCandidates(const std::vector<Mesh>& meshes, const std::vector<Curvature>& curv,
-                                         const std::vector<std::uint32_t>& flags, const Camera& camera, const ContourParams& p,
-                                         std::vector<std::pair<std::uint32_t, std::uint32_t>>* nearTies, double tol)
+    const std::vector<std::uint32_t>& flags, const Camera& camera, const ContourParams& p,
+    std::vector<std::pair<std::uint32_t, std::uint32_t>>* nearTies, double tol)
 {
     if (meshes.size() != curv.size())
         fail("contourCandidates: ", meshes.size(), " meshes but ", curv.size(), " curvatures");
@@ -61,7 +61,7 @@ std::vector<Candidate> contourCandidates(const std::vector<Mesh>& meshes, const 
         if (mesh.V.rows() != nv || c.k1.size() != nv)
             fail("contourCandidates: mesh ", m, " has ", mesh.V.rows(), " vertices and ", c.k1.size(), " curvatures, expected ", nv);
         for (Eigen::Index v = 0; v < nv; ++v) {
-            const glm::dvec3 to = camera.toCamera({mesh.V(v, 0), mesh.V(v, 1), mesh.V(v, 2)});
+            const glm::dvec3 to = camera.toCamera({ mesh.V(v, 0), mesh.V(v, 1), mesh.V(v, 2) });
             rc[v] = radialCurvature(c, v, Eigen::Vector3d(to.x, to.y, to.z));
         }
         for (Eigen::Index v = 0; v < nv; ++v) {
@@ -89,8 +89,8 @@ std::vector<Candidate> contourCandidates(const std::vector<Mesh>& meshes, const 
                         const bool nearer = std::abs(a) < std::abs(b) || (std::abs(a) == std::abs(b) && static_cast<std::uint32_t>(v) < u);
                         if (crossing && nearer)
                             types |= ContourSuggestive;
-                        tie |= std::abs(a) < tol * scale || std::abs(b) < tol * scale ||
-                               (crossing && std::abs(std::abs(a) - std::abs(b)) < tol * scale);
+                        tie |= std::abs(a) < tol * scale || std::abs(b) < tol * scale
+                            || (crossing && std::abs(std::abs(a) - std::abs(b)) < tol * scale);
                     }
             }
 
@@ -100,17 +100,17 @@ std::vector<Candidate> contourCandidates(const std::vector<Mesh>& meshes, const 
 
             if (types == 0) {
                 if (tie && nearTies)
-                    nearTies->push_back({static_cast<std::uint32_t>(m), static_cast<std::uint32_t>(v)});
+                    nearTies->push_back({ static_cast<std::uint32_t>(m), static_cast<std::uint32_t>(v) });
                 continue;
             }
             const glm::dvec3 world(mesh.V(v, 0), mesh.V(v, 1), mesh.V(v, 2));
             const glm::dvec3 s = camera.project(world);
             const double dist = glm::length(world - glm::dvec3(p.sphere[0], p.sphere[1], p.sphere[2]));
             const double pxTol = 1e-2;
-            tie |= std::abs(s.x - p.rect[0]) < pxTol || std::abs(s.x - p.rect[2]) < pxTol || std::abs(s.y - p.rect[1]) < pxTol ||
-                   std::abs(s.y - p.rect[3]) < pxTol || std::abs(dist - p.sphere[3]) < tol * p.sphere[3];
+            tie |= std::abs(s.x - p.rect[0]) < pxTol || std::abs(s.x - p.rect[2]) < pxTol || std::abs(s.y - p.rect[1]) < pxTol
+                || std::abs(s.y - p.rect[3]) < pxTol || std::abs(dist - p.sphere[3]) < tol * p.sphere[3];
             if (tie && nearTies)
-                nearTies->push_back({static_cast<std::uint32_t>(m), static_cast<std::uint32_t>(v)});
+                nearTies->push_back({ static_cast<std::uint32_t>(m), static_cast<std::uint32_t>(v) });
             if (s.x < p.rect[0] || s.x > p.rect[2] || s.y < p.rect[1] || s.y > p.rect[3] || dist > p.sphere[3])
                 continue;
             Candidate cand;

@@ -43,9 +43,9 @@ struct ContourParams {
     double suggestiveThreshold = 0.02; ///< on D_w k_r l^2
     double featureSize = 1.0;          ///< l: mean edge length, mm
     /// Screen culling rectangle in pixels (x0, y0, x1, y1), inclusive; default: everything.
-    double rect[4] = {-1e30, -1e30, 1e30, 1e30};
+    double rect[4] = { -1e30, -1e30, 1e30, 1e30 };
     /// World culling sphere (centre xyz, radius) in mm; default: everything.
-    double sphere[4] = {0, 0, 0, 1e30};
+    double sphere[4] = { 0, 0, 0, 1e30 };
 };
 
 /// The default silhouette threshold for a topology of `vertexCount` vertices (see above).
@@ -54,12 +54,12 @@ double defaultSilhouetteThreshold(std::int64_t vertexCount);
 double meanEdgeLength(const Mesh& mesh);
 
 struct Candidate {
-    std::uint32_t mesh = 0;    ///< index of the face in the batch
-    std::uint32_t vertex = 0;  ///< vertex index in the shared topology
-    std::uint32_t types = 0;   ///< ContourType bits
-    float world[3] = {0, 0, 0}; ///< mm
-    float screen[2] = {0, 0};  ///< pixels, (0, 0) top-left
-    float depth = 0;           ///< [0, 1], smaller is nearer
+    std::uint32_t mesh = 0;       ///< index of the face in the batch
+    std::uint32_t vertex = 0;     ///< vertex index in the shared topology
+    std::uint32_t types = 0;      ///< ContourType bits
+    float world[3] = { 0, 0, 0 }; ///< mm
+    float screen[2] = { 0, 0 };   ///< pixels, (0, 0) top-left
+    float depth = 0;              ///< [0, 1], smaller is nearer
 
     bool operator<(const Candidate& o) const { return mesh != o.mesh ? mesh < o.mesh : vertex < o.vertex; }
 };
@@ -69,8 +69,7 @@ struct Candidate {
 /// If `nearTies` is given, it receives (mesh, vertex) of each vertex whose classification is
 /// within `tieTolerance` (relative) of a threshold, where a float implementation may differ.
 std::vector<Candidate> contourCandidates(const std::vector<Mesh>& meshes, const std::vector<Curvature>& curv,
-                                         const std::vector<std::uint32_t>& flags, const Camera& camera, const ContourParams& params,
-                                         std::vector<std::pair<std::uint32_t, std::uint32_t>>* nearTies = nullptr,
-                                         double tieTolerance = 1e-3);
+    const std::vector<std::uint32_t>& flags, const Camera& camera, const ContourParams& params,
+    std::vector<std::pair<std::uint32_t, std::uint32_t>>* nearTies = nullptr, double tieTolerance = 1e-3);
 
 } // namespace facesketch

@@ -128,12 +128,13 @@ std::vector<Candidate> sortedCandidates(std::span<const CandidateGpu> raw, std::
 
 ContourKernels builtInContourKernels()
 {
-    return {gpu::shaderCode(contours_radial_comp), gpu::shaderCode(contours_comp)};
+    return { gpu::shaderCode(contours_radial_comp), gpu::shaderCode(contours_comp) };
 }
 
-GpuCandidates::GpuCandidates(gpu::Device& device, GpuCurvature& curvature, const std::vector<std::uint32_t>& flags,
-                             const ContourKernels& kernels)
-    : device_(device), curvature_(curvature)
+GpuCandidates::GpuCandidates(
+    gpu::Device& device, GpuCurvature& curvature, const std::vector<std::uint32_t>& flags, const ContourKernels& kernels)
+    : device_(device)
+    , curvature_(curvature)
 {
     const auto nv = static_cast<size_t>(curvature.vertexCount());
     if (!flags.empty() && flags.size() != nv)
@@ -145,18 +146,16 @@ GpuCandidates::GpuCandidates(gpu::Device& device, GpuCurvature& curvature, const
     vkGetPhysicalDeviceProperties2(device_.physical, &properties);
     if (!(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) || !(subgroup.supportedOperations & VK_SUBGROUP_FEATURE_BALLOT_BIT))
         fail("GpuCandidates: the device (", device_.name, ") has no subgroup ballot in compute shaders");
-    radialProgram_ = gpu::createComputeProgram(device_, kernels.radial, kBindings, 0,
-                                               1u << CONTOURS_BINDING_VIEW, CONTOURS_TEXEL_BINDINGS);
+    radialProgram_ = gpu::createComputeProgram(device_, kernels.radial, kBindings, 0, 1u << CONTOURS_BINDING_VIEW, CONTOURS_TEXEL_BINDINGS);
     try { // a variant's pass 2 may be what fails (ContourKernels): release pass 1's program
-        program_ = gpu::createComputeProgram(device_, kernels.contours, kBindings, 0, 1u << CONTOURS_BINDING_VIEW,
-                                             CONTOURS_TEXEL_BINDINGS);
+        program_ = gpu::createComputeProgram(device_, kernels.contours, kBindings, 0, 1u << CONTOURS_BINDING_VIEW, CONTOURS_TEXEL_BINDINGS);
     } catch (...) {
         gpu::destroyComputeProgram(device_, radialProgram_);
         throw;
     }
     rings_ = buildNeighbours(curvature.hostWedges());
     // A vertex without neighbours (isolated) still needs a non-empty buffer.
-    const std::vector<std::uint32_t> ringVertices = rings_.vertices.empty() ? std::vector<std::uint32_t>{0} : rings_.vertices;
+    const std::vector<std::uint32_t> ringVertices = rings_.vertices.empty() ? std::vector<std::uint32_t> { 0 } : rings_.vertices;
     flags_ = flags.empty() ? std::vector<std::uint32_t>(nv, 0) : flags;
     auto table = [&](gpu::Buffer& buffer, gpu::TexelView& view, const std::uint32_t* data, size_t count, int words) {
         buffer = gpu::createBuffer(device_, count * words * sizeof(std::uint32_t), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
@@ -179,8 +178,8 @@ GpuCandidates::~GpuCandidates()
         gpu::destroyBuffer(device_, output_);
     destroyBatchBuffers();
     gpu::destroyBuffer(device_, view_);
-    for (auto [buffer, view] : {std::pair{&neighbours_, &neighbourTexels_}, std::pair{&neighbourOffsets_, &neighbourOffsetTexels_},
-                                std::pair{&vertexList_, &vertexListTexels_}}) {
+    for (auto [buffer, view] : { std::pair { &neighbours_, &neighbourTexels_ }, std::pair { &neighbourOffsets_, &neighbourOffsetTexels_ },
+             std::pair { &vertexList_, &vertexListTexels_ } }) {
         gpu::destroyTexelView(device_, *view);
         gpu::destroyBuffer(device_, *buffer);
     }
@@ -208,15 +207,15 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
     const std::uint64_t pairGroups = (std::uint64_t(meshCount) * vertexCount + CONTOURS_GROUP_PAIRS - 1) / CONTOURS_GROUP_PAIRS;
     if (pairGroups > device_.properties.limits.maxComputeWorkGroupCount[0])
         fail("GpuCandidates::build: ", meshCount, " faces of ", vertexCount, " vertices may need ", pairGroups,
-             " workgroups in pass 2, more than this device's limit of ", device_.properties.limits.maxComputeWorkGroupCount[0]);
+            " workgroups in pass 2, more than this device's limit of ", device_.properties.limits.maxComputeWorkGroupCount[0]);
     if (radial_.size != perVertex) { // first build, or the curvature now holds another batch
         vkDeviceWaitIdle(device_.device);
         destroyBatchBuffers();
         const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
         radial_ = gpu::createBuffer(device_, perVertex, usage);
         radialTexels_ = gpu::createTexelView(device_, radial_, VK_FORMAT_R32_UINT);
-        work_ = gpu::createBuffer(device_, CONTOURS_WORK_HEADER * sizeof(std::uint32_t) + perVertex,
-                                  usage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+        work_ = gpu::createBuffer(
+            device_, CONTOURS_WORK_HEADER * sizeof(std::uint32_t) + perVertex, usage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
         workTexels_ = gpu::createTexelView(device_, work_, VK_FORMAT_R32_UINT);
     }
     // The vertices that may be a candidate in some mesh: inside the rectangle and the culling
@@ -227,12 +226,10 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
     const std::vector<std::array<double, 4>>& bounds = curvature_.vertexBounds();
     const std::vector<std::array<double, 4>>& cones = curvature_.normalCones();
     std::vector<char> candidate(vertexCount, 0), pretest(vertexCount, 0), listed(vertexCount, 0);
-    const bool everything = p.rect[0] <= -1e29 && p.rect[1] <= -1e29 && p.rect[2] >= 1e29 && p.rect[3] >= 1e29 &&
-                            p.sphere[3] >= 1e29;
+    const bool everything = p.rect[0] <= -1e29 && p.rect[1] <= -1e29 && p.rect[2] >= 1e29 && p.rect[3] >= 1e29 && p.sphere[3] >= 1e29;
     for (std::uint32_t v = 0; v < vertexCount; ++v) {
         const auto& b = bounds[v];
-        const double apart = std::sqrt(std::pow(b[0] - p.sphere[0], 2) + std::pow(b[1] - p.sphere[1], 2) +
-                                       std::pow(b[2] - p.sphere[2], 2));
+        const double apart = std::sqrt(std::pow(b[0] - p.sphere[0], 2) + std::pow(b[1] - p.sphere[1], 2) + std::pow(b[2] - p.sphere[2], 2));
         if (!everything && !(apart - b[3] <= p.sphere[3] * (1 + 1e-6) + 1e-3 && sphereMayShow(camera, b, p.rect)))
             continue;
         const double facing = cones.empty() ? 1.0 : maxFacing(camera, b, cones[v]);
@@ -266,21 +263,23 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
     const std::uint64_t groupsY = (listCount + radialProgram_.localSize[1] - 1) / radialProgram_.localSize[1];
     if (groupsY > device_.properties.limits.maxComputeWorkGroupCount[1])
         fail("GpuCandidates::build: ", listCount, " vertices need ", groupsY, " workgroups in pass 1, more than this device's limit of ",
-             device_.properties.limits.maxComputeWorkGroupCount[1]);
+            device_.properties.limits.maxComputeWorkGroupCount[1]);
 
     if (capacity_ == 0) {
         // A view's cloud is typically a few percent of all vertices; grown on demand below.
         capacity_ = std::max<std::uint32_t>(1024, meshCount * vertexCount / 16);
-        output_ = gpu::createBuffer(device_, outputHeader + VkDeviceSize(capacity_) * sizeof(CandidateGpu), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        output_
+            = gpu::createBuffer(device_, outputHeader + VkDeviceSize(capacity_) * sizeof(CandidateGpu), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     }
 
-    ContourViewGpu view{};
+    ContourViewGpu view {};
     view.viewProjection = glm::mat4(camera.projection * camera.view);
-    view.eye = camera.kind == Projection::Perspective ? glm::vec4(glm::vec3(camera.eye), 1.0f) : glm::vec4(glm::vec3(-camera.forward), 0.0f);
-    view.rect = {clampToFloat(p.rect[0]), clampToFloat(p.rect[1]), clampToFloat(p.rect[2]), clampToFloat(p.rect[3])};
-    view.sphere = {float(p.sphere[0]), float(p.sphere[1]), float(p.sphere[2]), clampToFloat(p.sphere[3])};
-    view.thresholds = {float(p.silhouetteThreshold), float(p.suggestiveThreshold), float(p.featureSize * p.featureSize), 0.0f};
-    view.screen = {float(camera.width), float(camera.height), 0.0f, 0.0f};
+    view.eye
+        = camera.kind == Projection::Perspective ? glm::vec4(glm::vec3(camera.eye), 1.0f) : glm::vec4(glm::vec3(-camera.forward), 0.0f);
+    view.rect = { clampToFloat(p.rect[0]), clampToFloat(p.rect[1]), clampToFloat(p.rect[2]), clampToFloat(p.rect[3]) };
+    view.sphere = { float(p.sphere[0]), float(p.sphere[1]), float(p.sphere[2]), clampToFloat(p.sphere[3]) };
+    view.thresholds = { float(p.silhouetteThreshold), float(p.suggestiveThreshold), float(p.featureSize * p.featureSize), 0.0f };
+    view.screen = { float(camera.width), float(camera.height), 0.0f, 0.0f };
 
     for (;;) {
         view.counts[0] = vertexCount;
@@ -296,12 +295,12 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
         gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
             gpu::timerStart(cmd, timer_);
             vkCmdFillBuffer(cmd, output_.buffer, 0, outputHeader, 0);
-            const std::uint32_t workHeader[CONTOURS_WORK_HEADER] = {0, 1, 1, 0}; // pass 2's size (x, y, z), pairs
+            const std::uint32_t workHeader[CONTOURS_WORK_HEADER] = { 0, 1, 1, 0 }; // pass 2's size (x, y, z), pairs
             vkCmdUpdateBuffer(cmd, work_.buffer, 0, sizeof(workHeader), workHeader);
             gpu::transferToComputeBarrier(cmd);
-            const std::initializer_list<gpu::Binding> buffers = {
-                &curvature_.positionTexels(), &curvature_.shapeTexels(), &curvature_.c23Texels(), &vertexListTexels_, &view_, &radial_,
-                &radialTexels_, &neighbourOffsetTexels_, &neighbourTexels_, &output_, &work_, &workTexels_, &curvature_.signLockTexels()};
+            const std::initializer_list<gpu::Binding> buffers = { &curvature_.positionTexels(), &curvature_.shapeTexels(),
+                &curvature_.c23Texels(), &vertexListTexels_, &view_, &radial_, &radialTexels_, &neighbourOffsetTexels_, &neighbourTexels_,
+                &output_, &work_, &workTexels_, &curvature_.signLockTexels() };
             gpu::dispatchRaw(device_, cmd, radialProgram_, meshInvocations, rows, 1, buffers, nullptr, 0);
             gpu::computeToIndirectBarrier(cmd);
             gpu::dispatchIndirect(device_, cmd, program_, work_, 0, buffers, nullptr, 0);
@@ -316,15 +315,16 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
             vkDeviceWaitIdle(device_.device);
             gpu::destroyBuffer(device_, output_);
             capacity_ = count + count / 4;
-            output_ = gpu::createBuffer(device_, outputHeader + VkDeviceSize(capacity_) * sizeof(CandidateGpu),
-                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+            output_ = gpu::createBuffer(
+                device_, outputHeader + VkDeviceSize(capacity_) * sizeof(CandidateGpu), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
             continue;
         }
         // Sorted straight from the output where the device shares memory with the host (lavapipe):
         // allocating and copying a whole view's 5 MB first took about 1 ms of its 6 ms on the host.
         if (output_.mapped)
-            return sortedCandidates({reinterpret_cast<const CandidateGpu*>(static_cast<const char*>(output_.mapped) + outputHeader), count},
-                                    meshCount, vertexCount);
+            return sortedCandidates(
+                { reinterpret_cast<const CandidateGpu*>(static_cast<const char*>(output_.mapped) + outputHeader), count }, meshCount,
+                vertexCount);
         std::vector<CandidateGpu> raw(count);
         if (count)
             gpu::readbackBuffer(device_, output_, raw.data(), raw.size() * sizeof(CandidateGpu), outputHeader);

@@ -41,7 +41,7 @@ public:
     /// `curvature` must have run and must outlive this object; `flags` holds #V VertexFlag bits
     /// (or is empty). `kernels`' code need only live through the constructor.
     GpuCandidates(gpu::Device& device, GpuCurvature& curvature, const std::vector<std::uint32_t>& flags,
-                  const ContourKernels& kernels = builtInContourKernels());
+        const ContourKernels& kernels = builtInContourKernels());
     ~GpuCandidates();
     GpuCandidates(const GpuCandidates&) = delete;
     GpuCandidates& operator=(const GpuCandidates&) = delete;
@@ -60,13 +60,13 @@ private:
 
     static constexpr std::uint32_t kBindings = 13; // shaders/shared.h CONTOURS_BINDING_*
     gpu::ComputeProgram radialProgram_, program_;
-    Neighbours rings_; // one-rings on the host, for listing the vertices a view needs
+    Neighbours rings_;                 // one-rings on the host, for listing the vertices a view needs
     std::vector<std::uint32_t> flags_; // VertexFlag per vertex, sent with the vertex list
     gpu::Buffer view_, neighbourOffsets_, neighbours_, vertexList_;
     gpu::TexelView neighbourOffsetTexels_, neighbourTexels_, vertexListTexels_;
     gpu::Buffer radial_; // the radial word per (mesh, vertex), between the two passes
     gpu::TexelView radialTexels_;
-    gpu::Buffer work_;   // pass 2's dispatch size and the pairs pass 1 listed for it
+    gpu::Buffer work_; // pass 2's dispatch size and the pairs pass 1 listed for it
     gpu::TexelView workTexels_;
     gpu::Buffer output_;
     std::uint32_t capacity_ = 0;

@@ -11,7 +11,7 @@ namespace {
 glm::vec3 lerp(const Mesh& mesh, int a, int b, double t)
 {
     const Eigen::RowVector3d p = mesh.V.row(a) + t * (mesh.V.row(b) - mesh.V.row(a));
-    return {p.x(), p.y(), p.z()};
+    return { p.x(), p.y(), p.z() };
 }
 
 // Appends the segment where `f` crosses zero inside triangle t, if `keep` accepts the
@@ -39,7 +39,7 @@ void traceZero(const Mesh& mesh, Eigen::Index t, const std::vector<double>& f, s
 } // namespace
 
 ContourLines contourLines(const Mesh& mesh, const Curvature& c, const Camera& camera, const ContourParams& params,
-                          const std::vector<std::uint32_t>& flags, const std::map<std::string, std::vector<int>>& labelled)
+    const std::vector<std::uint32_t>& flags, const std::map<std::string, std::vector<int>>& labelled)
 {
     const Eigen::Index nv = mesh.V.rows();
     if (c.k1.size() != nv)
@@ -50,7 +50,7 @@ ContourLines contourLines(const Mesh& mesh, const Curvature& c, const Camera& ca
     std::vector<double> ndotv(nv), kr(nv), strength(nv);
     const double l2 = params.featureSize * params.featureSize;
     for (Eigen::Index v = 0; v < nv; ++v) {
-        const glm::dvec3 to = camera.toCamera({mesh.V(v, 0), mesh.V(v, 1), mesh.V(v, 2)});
+        const glm::dvec3 to = camera.toCamera({ mesh.V(v, 0), mesh.V(v, 1), mesh.V(v, 2) });
         const RadialCurvature r = radialCurvature(c, v, Eigen::Vector3d(to.x, to.y, to.z));
         ndotv[v] = r.ndotv;
         kr[v] = r.kr;
@@ -72,7 +72,7 @@ ContourLines contourLines(const Mesh& mesh, const Curvature& c, const Camera& ca
             const int a = path[i], b = path[i + 1];
             if (a < 0 || b < 0 || a >= nv || b >= nv)
                 fail("contourLines: labelled contour '", name, "' has vertex ", std::min(a, b) < 0 ? std::min(a, b) : std::max(a, b),
-                     " outside [0, ", nv, ")");
+                    " outside [0, ", nv, ")");
             if (ndotv[a] > -params.silhouetteThreshold && ndotv[b] > -params.silhouetteThreshold) {
                 lines.labelled.push_back(lerp(mesh, a, a, 0));
                 lines.labelled.push_back(lerp(mesh, b, b, 0));

@@ -27,7 +27,6 @@ struct ContourLines {
 /// which may be empty) drop every triangle that touches them. `labelled` holds ordered vertex
 /// paths (e.g. a manifest's contours); labelled lines are kept where both ends face the camera.
 ContourLines contourLines(const Mesh& mesh, const Curvature& curvature, const Camera& camera, const ContourParams& params,
-                          const std::vector<std::uint32_t>& flags = {},
-                          const std::map<std::string, std::vector<int>>& labelled = {});
+    const std::vector<std::uint32_t>& flags = {}, const std::map<std::string, std::vector<int>>& labelled = {});
 
 } // namespace facesketch

@@ -36,30 +36,30 @@ std::array<double, 3> projectTensor(V3 u, V3 v, const std::array<double, 3>& efg
     rotateFrame(u, v, ru.cross(rv));
     const double u1 = ru.dot(u), v1 = ru.dot(v), u2 = rv.dot(u), v2 = rv.dot(v);
     const auto [e, f, g] = efg;
-    return {e * u1 * u1 + 2 * f * u1 * v1 + g * v1 * v1, e * u1 * u2 + f * (u1 * v2 + u2 * v1) + g * v1 * v2,
-            e * u2 * u2 + 2 * f * u2 * v2 + g * v2 * v2};
+    return { e * u1 * u1 + 2 * f * u1 * v1 + g * v1 * v1, e * u1 * u2 + f * (u1 * v2 + u2 * v1) + g * v1 * v2,
+        e * u2 * u2 + 2 * f * u2 * v2 + g * v2 * v2 };
 }
 
 // A symmetric 3-tensor (C111, C112, C122, C222) given in frame (u, v), read in frame (ru, rv).
 std::array<double, 4> projectDerivative(V3 u, V3 v, const std::array<double, 4>& c, const V3& ru, const V3& rv)
 {
     rotateFrame(u, v, ru.cross(rv));
-    const double x[2] = {ru.dot(u), ru.dot(v)}, y[2] = {rv.dot(u), rv.dot(v)};
+    const double x[2] = { ru.dot(u), ru.dot(v) }, y[2] = { rv.dot(u), rv.dot(v) };
     // C(p, q, r) for coordinate pairs p, q, r in the old frame.
     auto apply = [&](const double* p, const double* q, const double* r) {
-        return c[0] * p[0] * q[0] * r[0] + c[1] * (p[0] * q[0] * r[1] + p[0] * q[1] * r[0] + p[1] * q[0] * r[0]) +
-               c[2] * (p[0] * q[1] * r[1] + p[1] * q[0] * r[1] + p[1] * q[1] * r[0]) + c[3] * p[1] * q[1] * r[1];
+        return c[0] * p[0] * q[0] * r[0] + c[1] * (p[0] * q[0] * r[1] + p[0] * q[1] * r[0] + p[1] * q[0] * r[0])
+            + c[2] * (p[0] * q[1] * r[1] + p[1] * q[0] * r[1] + p[1] * q[1] * r[0]) + c[3] * p[1] * q[1] * r[1];
     };
-    return {apply(x, x, x), apply(x, x, y), apply(x, y, y), apply(y, y, y)};
+    return { apply(x, x, x), apply(x, x, y), apply(x, y, y), apply(y, y, y) };
 }
 
 // Voronoi (mixed, for obtuse triangles) area of each corner of triangle (p0, p1, p2).
 std::array<double, 3> cornerAreas(const std::array<V3, 3>& e)
 {
     const double area = 0.5 * e[0].cross(e[1]).norm();
-    const double l2[3] = {e[0].squaredNorm(), e[1].squaredNorm(), e[2].squaredNorm()};
+    const double l2[3] = { e[0].squaredNorm(), e[1].squaredNorm(), e[2].squaredNorm() };
     // Barycentric weights of the circumcentre.
-    const double ew[3] = {l2[0] * (l2[1] + l2[2] - l2[0]), l2[1] * (l2[2] + l2[0] - l2[1]), l2[2] * (l2[0] + l2[1] - l2[2])};
+    const double ew[3] = { l2[0] * (l2[1] + l2[2] - l2[0]), l2[1] * (l2[2] + l2[0] - l2[1]), l2[2] * (l2[0] + l2[1] - l2[2]) };
     std::array<double, 3> corner;
     for (int i = 0; i < 3; ++i) {
         if (ew[i] > 0)
@@ -90,8 +90,8 @@ Face makeFace(const Mesh& mesh, Eigen::Index f)
     Face face;
     for (int i = 0; i < 3; ++i)
         face.v[i] = mesh.F(f, i);
-    const V3 p[3] = {mesh.V.row(face.v[0]).transpose(), mesh.V.row(face.v[1]).transpose(), mesh.V.row(face.v[2]).transpose()};
-    face.e = {p[2] - p[1], p[0] - p[2], p[1] - p[0]};
+    const V3 p[3] = { mesh.V.row(face.v[0]).transpose(), mesh.V.row(face.v[1]).transpose(), mesh.V.row(face.v[2]).transpose() };
+    face.e = { p[2] - p[1], p[0] - p[2], p[1] - p[0] };
     const V3 n = face.e[0].cross(face.e[1]);
     face.degenerate = !(n.norm() > 0) || !(face.e[0].norm() > 0);
     if (face.degenerate)
@@ -159,7 +159,7 @@ Curvature estimateCurvature(const Mesh& mesh)
         }
 
     // Second fundamental form per face, accumulated into the vertex frames.
-    std::vector<std::array<double, 3>> tensor(nv, {0, 0, 0});
+    std::vector<std::array<double, 3>> tensor(nv, { 0, 0, 0 });
     for (const Face& face : faces) {
         if (face.degenerate)
             continue;
@@ -183,7 +183,7 @@ Curvature estimateCurvature(const Mesh& mesh)
             const int v = face.v[i];
             if (!haveFrame[v])
                 continue;
-            const auto t = projectTensor(face.t, face.b, {efg[0], efg[1], efg[2]}, c.dir1.row(v).transpose(), c.dir2.row(v).transpose());
+            const auto t = projectTensor(face.t, face.b, { efg[0], efg[1], efg[2] }, c.dir1.row(v).transpose(), c.dir2.row(v).transpose());
             for (int k = 0; k < 3; ++k)
                 tensor[v][k] += face.corner[i] * t[k];
             c.area[v] += face.corner[i];
@@ -213,7 +213,7 @@ Curvature estimateCurvature(const Mesh& mesh)
         std::array<std::array<double, 3>, 3> fcurv;
         for (int i = 0; i < 3; ++i) {
             const int v = face.v[i];
-            fcurv[i] = projectTensor(c.dir1.row(v).transpose(), c.dir2.row(v).transpose(), {c.k1[v], 0.0, c.k2[v]}, face.t, face.b);
+            fcurv[i] = projectTensor(c.dir1.row(v).transpose(), c.dir2.row(v).transpose(), { c.k1[v], 0.0, c.k2[v] }, face.t, face.b);
         }
         Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
         Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
@@ -221,7 +221,7 @@ Curvature estimateCurvature(const Mesh& mesh)
             const double u = face.e[j].dot(face.t), v = face.e[j].dot(face.b);
             const auto& head = fcurv[(j + 2) % 3];
             const auto& tail = fcurv[(j + 1) % 3];
-            const double d[3] = {head[0] - tail[0], head[1] - tail[1], head[2] - tail[2]};
+            const double d[3] = { head[0] - tail[0], head[1] - tail[1], head[2] - tail[2] };
             // Rows (u v 0 0), (0 u v 0), (0 0 u v) against d[0], d[1], d[2].
             for (int r = 0; r < 3; ++r) {
                 Eigen::Vector4d row = Eigen::Vector4d::Zero();
@@ -236,7 +236,8 @@ Curvature estimateCurvature(const Mesh& mesh)
             const int v = face.v[i];
             if (!(c.area[v] > 0))
                 continue;
-            const auto d = projectDerivative(face.t, face.b, {C[0], C[1], C[2], C[3]}, c.dir1.row(v).transpose(), c.dir2.row(v).transpose());
+            const auto d
+                = projectDerivative(face.t, face.b, { C[0], C[1], C[2], C[3] }, c.dir1.row(v).transpose(), c.dir2.row(v).transpose());
             const double weight = face.corner[i] / c.area[v];
             for (int k = 0; k < 4; ++k)
                 c.dcurv(v, k) += weight * d[k];

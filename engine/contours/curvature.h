@@ -29,7 +29,7 @@ struct Curvature {
     /// #V by 4 derivative of curvature in the (dir1, dir2) frame: C(d1,d1,d1), C(d1,d1,d2),
     /// C(d1,d2,d2), C(d2,d2,d2), in 1/mm^2. C(x,y,z) is the derivative along x of II(y,z).
     Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowMajor> dcurv;
-    Eigen::VectorXd area;   ///< #V mixed Voronoi area, mm^2 (sums to the mesh area)
+    Eigen::VectorXd area; ///< #V mixed Voronoi area, mm^2 (sums to the mesh area)
 };
 
 /// Curvature of `mesh` (validated; isolated vertices get zeros). The vertex frame before

@@ -18,18 +18,16 @@ namespace facesketch {
 
 namespace {
 
-constexpr char kMagic[8] = {'F', 'S', 'K', 'C', 'U', 'R', 'V', '\0'};
+constexpr char kMagic[8] = { 'F', 'S', 'K', 'C', 'U', 'R', 'V', '\0' };
 constexpr std::uint32_t kVersion = 1;
 constexpr std::size_t kHeader = 8 + 4 + 3 * 8;
 
-template <typename T>
-void put(std::string& out, const T& value)
+template <typename T> void put(std::string& out, const T& value)
 {
     out.append(reinterpret_cast<const char*>(&value), sizeof value);
 }
 
-template <typename T>
-T get(const std::string& in, std::size_t offset)
+template <typename T> T get(const std::string& in, std::size_t offset)
 {
     T value;
     std::memcpy(&value, in.data() + offset, sizeof value);
@@ -51,8 +49,8 @@ std::string encode(std::uint64_t key, std::uint64_t meshes, std::uint64_t vertic
 }
 
 // The shapes in `bytes` if they are a whole file for this batch; otherwise why not.
-bool decode(const std::string& bytes, std::uint64_t key, std::uint64_t meshes, std::uint64_t vertices,
-            GpuCurvature::PackedShapes& p, std::string& why)
+bool decode(const std::string& bytes, std::uint64_t key, std::uint64_t meshes, std::uint64_t vertices, GpuCurvature::PackedShapes& p,
+    std::string& why)
 {
     const std::uint64_t n = meshes * vertices;
     if (bytes.size() < kHeader || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
@@ -97,8 +95,8 @@ std::uint64_t curvatureCacheKey(const Triangles& F, const std::vector<float>& po
     return fnv1a(curvature_derivative_comp, sizeof curvature_derivative_comp, key);
 }
 
-CachedCurvature runCurvatureCached(GpuCurvature& curvature, const Triangles& F, const std::vector<float>& positions,
-                                   const std::filesystem::path& folder)
+CachedCurvature runCurvatureCached(
+    GpuCurvature& curvature, const Triangles& F, const std::vector<float>& positions, const std::filesystem::path& folder)
 {
     CachedCurvature out;
     if (folder.empty()) {

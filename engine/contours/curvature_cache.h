@@ -26,8 +26,8 @@ std::filesystem::path defaultCacheFolder();
 std::uint64_t curvatureCacheKey(const Triangles& F, const std::vector<float>& positions);
 
 struct CachedCurvature {
-    bool restored = false;     ///< read from the file instead of computed
-    double milliseconds = 0;   ///< GPU time of the pass, or wall time of the read
+    bool restored = false;      ///< read from the file instead of computed
+    double milliseconds = 0;    ///< GPU time of the pass, or wall time of the read
     std::filesystem::path file; ///< the cache file used or written (empty: no caching)
     /// Why the file was not used or not written (corrupt, truncated, unwritable), or empty. The
     /// pass itself still succeeded: a cache never stops the work.
@@ -39,7 +39,7 @@ struct CachedCurvature {
 /// the file atomically (core/atomic_file.h). A file that is unreadable, truncated, corrupt or
 /// for other data is recomputed and replaced, never trusted. An empty folder just runs the pass.
 /// After a restore only the packed shapes are on the GPU (what GpuCandidates reads).
-CachedCurvature runCurvatureCached(GpuCurvature& curvature, const Triangles& F, const std::vector<float>& positions,
-                                   const std::filesystem::path& folder);
+CachedCurvature runCurvatureCached(
+    GpuCurvature& curvature, const Triangles& F, const std::vector<float>& positions, const std::filesystem::path& folder);
 
 } // namespace facesketch

@@ -27,8 +27,8 @@ struct alignas(16) BatchConstants {
 };
 
 // Batch-layout vec4 buffer back to mesh-major with `components` floats per vertex.
-std::vector<float> downloadBatch(gpu::Device& device, const gpu::Buffer& buffer, std::uint32_t meshCount, Eigen::Index vertexCount,
-                                 int components)
+std::vector<float> downloadBatch(
+    gpu::Device& device, const gpu::Buffer& buffer, std::uint32_t meshCount, Eigen::Index vertexCount, int components)
 {
     const size_t n = static_cast<size_t>(meshCount) * vertexCount;
     std::vector<float> batch(4 * n);
@@ -72,16 +72,18 @@ Eigen::Vector3d octDecode(std::uint32_t packed)
     return n.normalized().cast<double>();
 }
 
-GpuCurvature::GpuCurvature(gpu::Device& device, const Triangles& F, Eigen::Index vertexCount) : device_(device), vertexCount_(vertexCount)
+GpuCurvature::GpuCurvature(gpu::Device& device, const Triangles& F, Eigen::Index vertexCount)
+    : device_(device)
+    , vertexCount_(vertexCount)
 {
     if (vertexCount <= 0 || F.rows() == 0)
         fail("GpuCurvature: need at least one vertex and one triangle (got ", vertexCount, " and ", F.rows(), ")");
-    normalsProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(normals_comp), 4, sizeof(NormalsConstants), 0,
-                                                NORMALS_TEXEL_BINDINGS);
-    curvatureProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(curvature_comp), 6, sizeof(BatchConstants), 0,
-                                                  CURVATURE_TEXEL_BINDINGS);
-    derivativeProgram_ = gpu::createComputeProgram(device_, gpu::shaderCode(curvature_derivative_comp), 9, sizeof(BatchConstants), 0,
-                                                   DCURV_TEXEL_BINDINGS);
+    normalsProgram_
+        = gpu::createComputeProgram(device_, gpu::shaderCode(normals_comp), 4, sizeof(NormalsConstants), 0, NORMALS_TEXEL_BINDINGS);
+    curvatureProgram_
+        = gpu::createComputeProgram(device_, gpu::shaderCode(curvature_comp), 6, sizeof(BatchConstants), 0, CURVATURE_TEXEL_BINDINGS);
+    derivativeProgram_ = gpu::createComputeProgram(
+        device_, gpu::shaderCode(curvature_derivative_comp), 9, sizeof(BatchConstants), 0, DCURV_TEXEL_BINDINGS);
     uploadWedges(device_, F, vertexCount, wedgeOffsets_, wedges_);
     wedgeTexels_ = createWedgeTexels(device_, wedgeOffsets_, wedges_);
     hostWedges_ = buildWedges(F, vertexCount);
@@ -105,10 +107,10 @@ GpuCurvature::~GpuCurvature()
 void GpuCurvature::destroyBatchBuffers()
 {
     for (gpu::TexelView* t :
-         {&signLockTexels_, &c23Texels_, &shapeTexels_, &directionTexels_, &curvatureTexels_, &normalTexels_, &positionTexels_})
+        { &signLockTexels_, &c23Texels_, &shapeTexels_, &directionTexels_, &curvatureTexels_, &normalTexels_, &positionTexels_ })
         if (t->view)
             gpu::destroyTexelView(device_, *t);
-    for (gpu::Buffer* b : {&signLocks_, &shapesC23_, &shapes_, &derivatives_, &directions_, &curvature_, &normals_, &positions_})
+    for (gpu::Buffer* b : { &signLocks_, &shapesC23_, &shapes_, &derivatives_, &directions_, &curvature_, &normals_, &positions_ })
         if (b->buffer)
             gpu::destroyBuffer(device_, *b);
 }
@@ -128,7 +130,7 @@ void GpuCurvature::setPositions(const std::vector<float>& positions)
         destroyBatchBuffers();
         // The contour kernels read positions and shapes as texel buffers (gpu::TexelView).
         const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
-        for (gpu::Buffer* b : {&positions_, &normals_, &curvature_, &directions_, &derivatives_, &shapes_})
+        for (gpu::Buffer* b : { &positions_, &normals_, &curvature_, &directions_, &derivatives_, &shapes_ })
             *b = gpu::createBuffer(device_, bytes, usage);
         shapesC23_ = gpu::createBuffer(device_, bytes / 4, usage);
         positionTexels_ = gpu::createTexelView(device_, positions_, VK_FORMAT_R32G32B32A32_SFLOAT);
@@ -145,7 +147,7 @@ void GpuCurvature::setPositions(const std::vector<float>& positions)
     const std::vector<std::uint32_t> noLocks(signLockWords(meshCount, vertexCount_), 0);
     gpu::uploadBuffer(device_, signLocks_, noLocks.data(), noLocks.size() * sizeof(std::uint32_t));
     const auto nv = static_cast<size_t>(vertexCount_);
-    vertexBounds_.assign(nv, {0, 0, 0, 0});
+    vertexBounds_.assign(nv, { 0, 0, 0, 0 });
     for (size_t m = 0; m < meshCount; ++m)
         for (size_t v = 0; v < nv; ++v)
             for (int c = 0; c < 3; ++c)
@@ -166,23 +168,23 @@ double GpuCurvature::run()
     if (meshCount_ == 0)
         fail("GpuCurvature::run: no positions set");
     const auto vertices = static_cast<std::uint32_t>(vertexCount_);
-    const NormalsConstants normalsConstants{vertices, meshCount_, NORMALS_WEIGHT_MAX};
-    const BatchConstants constants{vertices, meshCount_};
+    const NormalsConstants normalsConstants { vertices, meshCount_, NORMALS_WEIGHT_MAX };
+    const BatchConstants constants { vertices, meshCount_ };
     const std::uint32_t rows = batchRows(vertices, curvatureProgram_.localSize[1]);
     shapesOnly_ = false;
     gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
         gpu::timerStart(cmd, timer_);
         const WedgeTexels& w = wedgeTexels_;
-        gpu::dispatch(device_, cmd, normalsProgram_, meshCount_, rows, 1, {&positionTexels_, &w.offsets, &w.corners, &normals_},
-                      normalsConstants);
+        gpu::dispatch(
+            device_, cmd, normalsProgram_, meshCount_, rows, 1, { &positionTexels_, &w.offsets, &w.corners, &normals_ }, normalsConstants);
         gpu::computeBarrier(cmd);
         gpu::dispatch(device_, cmd, curvatureProgram_, meshCount_, rows, 1,
-                      {&positionTexels_, &w.offsets, &w.corners, &normalTexels_, &curvature_, &directions_}, constants);
+            { &positionTexels_, &w.offsets, &w.corners, &normalTexels_, &curvature_, &directions_ }, constants);
         gpu::computeBarrier(cmd);
         gpu::dispatch(device_, cmd, derivativeProgram_, meshCount_, rows, 1,
-                      {&positionTexels_, &w.offsets, &w.corners, &normalTexels_, &curvatureTexels_, &directionTexels_, &derivatives_,
-                       &shapes_, &shapesC23_},
-                      constants);
+            { &positionTexels_, &w.offsets, &w.corners, &normalTexels_, &curvatureTexels_, &directionTexels_, &derivatives_, &shapes_,
+                &shapesC23_ },
+            constants);
         gpu::hostReadBarrier(cmd);
         gpu::timerEnd(cmd, timer_);
     });
@@ -221,7 +223,7 @@ void GpuCurvature::setViewBounds(const std::vector<std::uint32_t>& shapes)
 
     // The axis is the normalised mean normal, the half-angle the widest normal's angle to it
     // plus 1e-4 rad, far more than the float rounding between this decoder and the kernels'.
-    normalCones_.assign(nv, {0, 0, 1, M_PI});
+    normalCones_.assign(nv, { 0, 0, 1, M_PI });
     std::vector<Eigen::Vector3d> normals(meshCount_);
     for (size_t v = 0; v < nv; ++v) {
         Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -240,7 +242,7 @@ void GpuCurvature::setViewBounds(const std::vector<std::uint32_t>& shapes)
         double halfAngle = 0;
         for (size_t k = 0; k < count; ++k)
             halfAngle = std::max(halfAngle, std::atan2(normals[k].cross(axis).norm(), normals[k].dot(axis))); // exact near 0, unlike acos
-        normalCones_[v] = {axis.x(), axis.y(), axis.z(), std::min(M_PI, halfAngle + 1e-4)};
+        normalCones_[v] = { axis.x(), axis.y(), axis.z(), std::min(M_PI, halfAngle + 1e-4) };
     }
 }
 
@@ -249,7 +251,7 @@ GpuCurvature::PackedShapes GpuCurvature::downloadShapes()
     if (meshCount_ == 0)
         fail("GpuCurvature::downloadShapes: no positions set");
     const size_t n = static_cast<size_t>(meshCount_) * static_cast<size_t>(vertexCount_);
-    PackedShapes p{std::vector<std::uint32_t>(4 * n), std::vector<std::uint32_t>(n)};
+    PackedShapes p { std::vector<std::uint32_t>(4 * n), std::vector<std::uint32_t>(n) };
     gpu::readbackBuffer(device_, shapes_, p.shapes.data(), p.shapes.size() * 4);
     gpu::readbackBuffer(device_, shapesC23_, p.c23.data(), p.c23.size() * 4);
     return p;
@@ -260,7 +262,7 @@ void GpuCurvature::uploadShapes(const PackedShapes& p)
     const size_t n = static_cast<size_t>(meshCount_) * static_cast<size_t>(vertexCount_);
     if (meshCount_ == 0 || p.shapes.size() != 4 * n || p.c23.size() != n)
         fail("GpuCurvature::uploadShapes: ", p.shapes.size(), " shape words and ", p.c23.size(), " C23 words for ", meshCount_,
-             " meshes of ", vertexCount_, " vertices");
+            " meshes of ", vertexCount_, " vertices");
     gpu::uploadBuffer(device_, shapes_, p.shapes.data(), p.shapes.size() * 4);
     gpu::uploadBuffer(device_, shapesC23_, p.c23.data(), p.c23.size() * 4);
     shapesOnly_ = true;
@@ -289,7 +291,7 @@ GpuCurvature::Result GpuCurvature::download()
             if (s[0] == 0 && s[1] == 0)
                 continue;
             const Eigen::Vector3d normal = octDecode(s[0]), dir1 = octDecode(s[1]);
-            const std::uint32_t halves[3] = {s[2], s[3], c23[batch]};
+            const std::uint32_t halves[3] = { s[2], s[3], c23[batch] };
             for (int k = 0; k < 3; ++k) {
                 r.packed[out + k] = static_cast<float>(normal[k]);
                 r.packed[out + 3 + k] = static_cast<float>(dir1[k]);

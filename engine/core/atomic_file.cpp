@@ -16,7 +16,7 @@ void writeFileAtomically(const std::filesystem::path& path, const std::function<
         fail(path.string(), ": folder ", dir.string(), " does not exist");
 
     // Unique per process and call, so concurrent writers never share a temporary.
-    static thread_local std::mt19937_64 rng(std::random_device{}() ^ static_cast<unsigned>(getpid()));
+    static thread_local std::mt19937_64 rng(std::random_device {}() ^ static_cast<unsigned>(getpid()));
     const fs::path tmp = dir / cat(".", path.filename().string(), ".tmp-", getpid(), "-", rng() % 1000000007u);
     try {
         {

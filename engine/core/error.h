@@ -15,8 +15,7 @@ public:
 };
 
 /// Concatenates its arguments with operator<< (GCC 12 has no <format>).
-template <typename... Args>
-std::string cat(const Args&... args)
+template <typename... Args> std::string cat(const Args&... args)
 {
     std::ostringstream out;
     out.precision(9);
@@ -25,8 +24,7 @@ std::string cat(const Args&... args)
 }
 
 /// Throws Error(cat(args...)).
-template <typename... Args>
-[[noreturn]] void fail(const Args&... args)
+template <typename... Args> [[noreturn]] void fail(const Args&... args)
 {
     throw Error(cat(args...));
 }

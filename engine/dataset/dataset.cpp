@@ -31,7 +31,7 @@ Dataset openDataset(const fs::path& folder)
     const fs::path manifestPath = folder / "manifest.json";
     if (!fs::is_regular_file(manifestPath))
         fail(folder.string(), ": no manifest.json (not a dataset folder)");
-    Dataset d{folder, readManifest(manifestPath)};
+    Dataset d { folder, readManifest(manifestPath) };
     checkFilesExist(folder, d.manifest, manifestPath.string());
     return d;
 }
@@ -44,12 +44,11 @@ Mesh loadMesh(const Dataset& dataset, const fs::path& file)
     if (mesh.vertexCount() != m.vertexCount)
         fail(path.string(), ": has ", mesh.vertexCount(), " vertices, the manifest's topology has ", m.vertexCount);
     if (mesh.triangleCount() != m.topology.rows())
-        fail(path.string(), ": has ", mesh.triangleCount(), " triangles, the manifest's topology has ",
-             m.topology.rows());
+        fail(path.string(), ": has ", mesh.triangleCount(), " triangles, the manifest's topology has ", m.topology.rows());
     for (Eigen::Index f = 0; f < mesh.triangleCount(); ++f)
         if (mesh.F.row(f) != m.topology.row(f))
             fail(path.string(), ": triangle ", f, " (", mesh.F(f, 0), ", ", mesh.F(f, 1), ", ", mesh.F(f, 2),
-                 ") differs from the manifest's topology[", f, "]");
+                ") differs from the manifest's topology[", f, "]");
     return mesh;
 }
 
@@ -104,7 +103,7 @@ void writeDataset(const fs::path& folderIn, const Manifest& manifest, const std:
             fail(where, ": exists, is not empty and is not a dataset (no manifest.json); not replacing it");
     }
 
-    std::mt19937_64 rng(std::random_device{}() ^ static_cast<unsigned>(getpid()));
+    std::mt19937_64 rng(std::random_device {}() ^ static_cast<unsigned>(getpid()));
     const std::string tag = cat(getpid(), "-", rng() % 1000000007u);
     const fs::path tmp = parent / cat(".", folder.filename().string(), ".tmp-", tag);
     const fs::path old = parent / cat(".", folder.filename().string(), ".old-", tag);

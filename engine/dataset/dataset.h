@@ -40,7 +40,7 @@ Vertices unflatten(const Eigen::Ref<const Eigen::RowVectorXd>& row);
 /// checked to exist, and the temporary folder is renamed to `folder`. An existing `folder`
 /// is replaced only if it is empty or holds a manifest.json (i.e. it is a dataset); on any
 /// failure the temporary folder is removed and `folder` is untouched.
-void writeDataset(const std::filesystem::path& folder, const Manifest& manifest,
-                  const std::function<void(const std::filesystem::path& tmp)>& fill);
+void writeDataset(
+    const std::filesystem::path& folder, const Manifest& manifest, const std::function<void(const std::filesystem::path& tmp)>& fill);
 
 } // namespace facesketch::dataset

@@ -31,7 +31,7 @@ double rhoBase(const Frame& f, double theta, double phi)
 
 Eigen::Vector3d direction(double theta, double phi)
 {
-    return {std::cos(phi) * std::sin(theta), std::sin(phi), std::cos(phi) * std::cos(theta)};
+    return { std::cos(phi) * std::sin(theta), std::sin(phi), std::cos(phi) * std::cos(theta) };
 }
 
 namespace {
@@ -100,20 +100,20 @@ Frame makeFrame(const FaceParams& p)
 
     // Midline profile without nose, lips and chin boss: (y, z) pairs top to bottom.
     const std::vector<std::pair<double, double>> profile = {
-        {f.yN + 100, f.zf - 52 - 0.6 * slope},
-        {f.yN + 72, f.zf - 24 - 0.4 * slope},
-        {f.yN + 45, f.zf - 8 - 0.2 * slope},
-        {f.yN + 22, f.zf - 0.5 + 0.3 * p.nasionDepth},
-        {f.yN + 11, f.zf + p.nasionDepth},
-        {f.yN, f.zf},
-        {lerp(f.yN, f.ySn, 0.5), f.zf - 1.5},
-        {f.ySn, f.zSn},
-        {f.ySto, f.zSto},
-        {f.yPg, f.zPg - p.chinHeight},
-        {f.yGn, f.zGn},
-        {f.yGn - 7, f.zGn - 20},
-        {f.yGn - 13, f.zGn - 40},
-        {f.yGn - 40, f.zGn - 50},
+        { f.yN + 100, f.zf - 52 - 0.6 * slope },
+        { f.yN + 72, f.zf - 24 - 0.4 * slope },
+        { f.yN + 45, f.zf - 8 - 0.2 * slope },
+        { f.yN + 22, f.zf - 0.5 + 0.3 * p.nasionDepth },
+        { f.yN + 11, f.zf + p.nasionDepth },
+        { f.yN, f.zf },
+        { lerp(f.yN, f.ySn, 0.5), f.zf - 1.5 },
+        { f.ySn, f.zSn },
+        { f.ySto, f.zSto },
+        { f.yPg, f.zPg - p.chinHeight },
+        { f.yGn, f.zGn },
+        { f.yGn - 7, f.zGn - 20 },
+        { f.yGn - 13, f.zGn - 40 },
+        { f.yGn - 40, f.zGn - 50 },
     };
     for (auto it = profile.rbegin(); it != profile.rend(); ++it) {
         f.depth.x.push_back(std::atan2(it->first, it->second));
@@ -124,8 +124,15 @@ Frame makeFrame(const FaceParams& p)
     // Half width at the side of the head, by elevation (radians).
     const double hb = p.headBreadth / 2, zy = p.cheekboneWidth / 2, go = p.jawWidth / 2, neck = p.neckWidth / 2;
     const std::vector<std::pair<double, double>> widths = {
-        {-1.45, std::min(0.85 * go, 0.8 * neck)}, {-1.1, std::min(0.9 * go, 0.86 * neck)}, {-0.85, go}, {-0.5, 0.5 * (go + zy)}, {-0.2, std::max(zy, 0.94 * hb)},
-        {0.1, hb}, {0.45, 0.97 * hb}, {0.8, 0.8 * hb}, {1.2, 0.55 * hb},
+        { -1.45, std::min(0.85 * go, 0.8 * neck) },
+        { -1.1, std::min(0.9 * go, 0.86 * neck) },
+        { -0.85, go },
+        { -0.5, 0.5 * (go + zy) },
+        { -0.2, std::max(zy, 0.94 * hb) },
+        { 0.1, hb },
+        { 0.45, 0.97 * hb },
+        { 0.8, 0.8 * hb },
+        { 1.2, 0.55 * hb },
     };
     for (const auto& [phi, w] : widths) {
         f.width.x.push_back(phi);
@@ -161,15 +168,13 @@ Frame makeFrame(const FaceParams& p)
     // The features add a little radius on the midline (glabella, chin boss, detail), so move
     // the profile's knots at n, sn, pg and gn until the finished skin passes through their
     // targets exactly; the nose height follows.
-    const std::pair<double, double> exact[] = {{f.yN, f.zf}, {f.ySn, f.zSn}, {f.yPg, f.zPg}, {f.yGn, f.zGn}};
+    const std::pair<double, double> exact[] = { { f.yN, f.zf }, { f.ySn, f.zSn }, { f.yPg, f.zPg }, { f.yGn, f.zGn } };
     for (int pass = 0; pass < 3; ++pass) {
         for (const auto& [y, z] : exact) {
             const double phi = std::atan2(y, z);
-            const size_t k = static_cast<size_t>(std::min_element(f.depth.x.begin(), f.depth.x.end(),
-                                                                  [&](double a, double b) {
-                                                                      return std::abs(a - phi) < std::abs(b - phi);
-                                                                  }) -
-                                                 f.depth.x.begin());
+            const size_t k = static_cast<size_t>(std::min_element(f.depth.x.begin(), f.depth.x.end(), [&](double a, double b) {
+                return std::abs(a - phi) < std::abs(b - phi);
+            }) - f.depth.x.begin());
             f.depth.y[k] += (std::hypot(y, z) - neutralRadius(f, 0, phi)) * std::cos(phi);
         }
         f.depth.build();

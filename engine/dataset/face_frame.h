@@ -19,9 +19,18 @@ inline double smoothstep(double e0, double e1, double x)
     const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
     return t * t * (3 - 2 * t);
 }
-inline double fall(double t) { return 1 - smoothstep(0, 1, t); }
-inline double sq(double x) { return x * x; }
-inline double lerp(double a, double b, double t) { return a + (b - a) * t; }
+inline double fall(double t)
+{
+    return 1 - smoothstep(0, 1, t);
+}
+inline double sq(double x)
+{
+    return x * x;
+}
+inline double lerp(double a, double b, double t)
+{
+    return a + (b - a) * t;
+}
 
 // C1 smooth maximum; equals max(a, b) when they differ by more than k.
 inline double smax(double a, double b, double k)
@@ -83,17 +92,16 @@ struct Frame {
     FaceParams p;
     Monotone depth; // horizontal depth of the midline, as a function of phi
     Monotone width; // half width at theta = 90 degrees, as a function of phi
-    double zf = 88, yN = 8, ySn = -46, zSn = 89, yPrn = -42, zPrn = 109, ySto = -68, zSto = 88, yGn = -112,
-           zGn = 75, yPg = -100, zPg = 86;
-    double phiTopFront = 0.8, phiBrow = 0.2, phiN = 0.1, phiPrn = -0.4, phiSn = -0.5, phiLs = -0.6,
-           phiSto = -0.65, phiLi = -0.7, phiPg = -0.8, phiGn = -0.9, phiBottomFront = -1.3;
-    double noseTip = 20;          // radial height of the nose at prn
+    double zf = 88, yN = 8, ySn = -46, zSn = 89, yPrn = -42, zPrn = 109, ySto = -68, zSto = 88, yGn = -112, zGn = 75, yPg = -100, zPg = 86;
+    double phiTopFront = 0.8, phiBrow = 0.2, phiN = 0.1, phiPrn = -0.4, phiSn = -0.5, phiLs = -0.6, phiSto = -0.65, phiLi = -0.7,
+           phiPg = -0.8, phiGn = -0.9, phiBottomFront = -1.3;
+    double noseTip = 20; // radial height of the nose at prn
     double thetaEn = 0.2, thetaEx = 0.6, thetaAl = 0.2, thetaCh = 0.3;
-    double rEye = 80;             // mm per radian near the eyes
-    double rMouth = 90;           // mm per radian of azimuth near the mouth
-    double mouthScale = 140;      // mm per radian of elevation near the mouth (midline height)
-    double xEye = 31;             // eyeball centre, base x
-    Eye eye[2];                   // right (-x), left (+x)
+    double rEye = 80;        // mm per radian near the eyes
+    double rMouth = 90;      // mm per radian of azimuth near the mouth
+    double mouthScale = 140; // mm per radian of elevation near the mouth (midline height)
+    double xEye = 31;        // eyeball centre, base x
+    Eye eye[2];              // right (-x), left (+x)
 };
 
 /// Height of the base midline at elevation phi (mm): the vertical coordinate of the mouth

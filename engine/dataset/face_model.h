@@ -45,28 +45,28 @@ Resolution parseResolution(const std::string& text);
 
 /// Muscle-like deformers of one pose. Pairs are [right, left] (the face's own sides).
 struct FaceActions {
-    double jawOpen = 0;                  ///< degrees of jaw rotation (about 0..20)
-    double lipPart = 0;                  ///< mm of extra opening between the lips
-    double upperLipRaise[2] = {0, 0};    ///< mm
-    double lowerLipDepress = 0;          ///< mm
-    double cornerPull[2] = {0, 0};       ///< mm, lip corners up and out (smile)
-    double cornerDepress[2] = {0, 0};    ///< mm, lip corners down (frown, sadness)
-    double mouthStretch = 0;             ///< mm, corners straight out (fear, E, I)
-    double pucker = 0;                   ///< 0..1, mouth narrowed towards its centre
-    double lipsForward = 0;              ///< mm, lips pushed out (pucker, funnel, O, U)
-    double lipPress = 0;                 ///< 0..1, lips thinned (anger, PP)
-    double lowerLipTuck = 0;             ///< mm, lower lip pulled in (FF)
-    double browInnerRaise = 0;           ///< mm
-    double browOuterRaise = 0;           ///< mm
-    double browLower = 0;                ///< mm, brows down (anger, frown)
-    double lidClose[2] = {0, 0};         ///< 0..1 of the opening closed by the upper lid
-    double lidWide = 0;                  ///< fraction the upper lid opens further
-    double lowerLidRaise = 0;            ///< mm
-    double cheekPuff = 0;                ///< mm
-    double cheekRaise = 0;               ///< mm
-    double noseWrinkle = 0;              ///< mm
-    double tongueForward = 0;            ///< mm
-    double tongueUp = 0;                 ///< mm
+    double jawOpen = 0;                 ///< degrees of jaw rotation (about 0..20)
+    double lipPart = 0;                 ///< mm of extra opening between the lips
+    double upperLipRaise[2] = { 0, 0 }; ///< mm
+    double lowerLipDepress = 0;         ///< mm
+    double cornerPull[2] = { 0, 0 };    ///< mm, lip corners up and out (smile)
+    double cornerDepress[2] = { 0, 0 }; ///< mm, lip corners down (frown, sadness)
+    double mouthStretch = 0;            ///< mm, corners straight out (fear, E, I)
+    double pucker = 0;                  ///< 0..1, mouth narrowed towards its centre
+    double lipsForward = 0;             ///< mm, lips pushed out (pucker, funnel, O, U)
+    double lipPress = 0;                ///< 0..1, lips thinned (anger, PP)
+    double lowerLipTuck = 0;            ///< mm, lower lip pulled in (FF)
+    double browInnerRaise = 0;          ///< mm
+    double browOuterRaise = 0;          ///< mm
+    double browLower = 0;               ///< mm, brows down (anger, frown)
+    double lidClose[2] = { 0, 0 };      ///< 0..1 of the opening closed by the upper lid
+    double lidWide = 0;                 ///< fraction the upper lid opens further
+    double lowerLidRaise = 0;           ///< mm
+    double cheekPuff = 0;               ///< mm
+    double cheekRaise = 0;              ///< mm
+    double noseWrinkle = 0;             ///< mm
+    double tongueForward = 0;           ///< mm
+    double tongueUp = 0;                ///< mm
 };
 
 /// Where a skin vertex sits in the grid. `slit` is 0 for ordinary vertices, +1 for the upper
@@ -87,7 +87,7 @@ struct FaceTopology {
     int eyeRings = 0, eyeSegments = 0;    ///< eyeball UV sphere
     int archSamples = 0, archSection = 0; ///< teeth tube along the dental arch
     int tongueRings = 0, tongueSegments = 0;
-    Manifest labels;                      ///< vertexCount, topology, components, landmarks, mpeg4, contours, excluded
+    Manifest labels; ///< vertexCount, topology, components, landmarks, mpeg4, contours, excluded
 
     /// Index of grid vertex (row, col) (its upper copy if it lies on a slit).
     int grid(int row, int col) const { return row * cols + col; }

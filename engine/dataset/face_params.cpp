@@ -4,7 +4,10 @@
 
 namespace facesketch::dataset {
 
-Rng::Rng(std::uint64_t seed) : engine_(seed) {}
+Rng::Rng(std::uint64_t seed)
+    : engine_(seed)
+{
+}
 
 double Rng::uniform()
 {
@@ -33,13 +36,13 @@ const std::vector<Norm>& farkasNorms()
     // Farkas LG, Anthropometry of the Head and Face, 2nd ed., 1994: North American Caucasian
     // adults (19-25 years), mean and SD in mm, men then women.
     static const std::vector<Norm> norms = {
-        {"ex-ex", "ex_r", "ex_l", 91.2, 3.0, 87.8, 3.2},   // biocular width
-        {"en-en", "en_r", "en_l", 33.3, 2.7, 31.8, 2.3},   // intercanthal width
-        {"al-al", "al_r", "al_l", 34.9, 2.1, 31.4, 2.0},   // nose width
-        {"ch-ch", "ch_r", "ch_l", 53.3, 3.3, 49.8, 3.2},   // mouth width
-        {"n-gn", "n", "gn", 121.3, 6.8, 112.8, 5.2},       // morphological face height
-        {"n-sn", "n", "sn", 54.8, 3.3, 50.6, 3.1},         // nose height
-        {"sn-sto", "sn", "sto", 22.3, 2.3, 19.9, 2.0},     // upper lip height
+        { "ex-ex", "ex_r", "ex_l", 91.2, 3.0, 87.8, 3.2 }, // biocular width
+        { "en-en", "en_r", "en_l", 33.3, 2.7, 31.8, 2.3 }, // intercanthal width
+        { "al-al", "al_r", "al_l", 34.9, 2.1, 31.4, 2.0 }, // nose width
+        { "ch-ch", "ch_r", "ch_l", 53.3, 3.3, 49.8, 3.2 }, // mouth width
+        { "n-gn", "n", "gn", 121.3, 6.8, 112.8, 5.2 },     // morphological face height
+        { "n-sn", "n", "sn", 54.8, 3.3, 50.6, 3.1 },       // nose height
+        { "sn-sto", "sn", "sto", 22.3, 2.3, 19.9, 2.0 },   // upper lip height
     };
     return norms;
 }
@@ -69,7 +72,7 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
     p.female = rng.uniform() < 0.5;
     p.age = rng.uniform(20, 65);
     const double g = rng.normal();
-    const double s = p.female ? 1.0 : 0.0; // 1 for women
+    const double s = p.female ? 1.0 : 0.0;               // 1 for women
     const double aging = std::max(0.0, p.age - 30) / 35; // 0 young .. 1 at 65
 
     const auto& norms = farkasNorms();

@@ -39,9 +39,9 @@ private:
 
 /// One adult anthropometric norm: a distance between two landmarks, mean and SD in mm by sex.
 struct Norm {
-    const char* name;  ///< e.g. "ex-ex"
-    const char* from;  ///< landmark names in the dataset, e.g. "ex_r"
-    const char* to;    ///< e.g. "ex_l"
+    const char* name; ///< e.g. "ex-ex"
+    const char* from; ///< landmark names in the dataset, e.g. "ex_r"
+    const char* to;   ///< e.g. "ex_l"
     double meanMale, sdMale, meanFemale, sdFemale;
 };
 
@@ -51,9 +51,9 @@ const std::vector<Norm>& farkasNorms();
 
 /// A small radial bump of "fine random detail", in the face chart (see face_model.h).
 struct DetailBump {
-    double theta, phi;   ///< centre, radians
-    double radius;       ///< radians
-    double height;       ///< mm, signed
+    double theta, phi; ///< centre, radians
+    double radius;     ///< radians
+    double height;     ///< mm, signed
 };
 
 /// Conformation of one face; lengths in mm, angles in degrees unless noted.
@@ -65,14 +65,14 @@ struct FaceParams {
     double exex = 91, enen = 33, alal = 35, chch = 53, ngn = 121, nsn = 55, snsto = 22;
 
     // Nose.
-    double tipProtrusion = 20;  ///< sn to prn, forward
-    double tipRise = 4;         ///< prn above sn
-    double dorsumHump = 0;      ///< mm of convexity on the dorsum (negative: concave)
-    double bridgeWidth = 6;     ///< half width of the dorsum
-    double tipWidth = 9;        ///< half width of the lobule
-    double alaSize = 7;         ///< radius of an alar lobule
-    double nostrilSize = 3.5;   ///< half length of a nostril
-    double nasionDepth = 0;     ///< nasion set back (+) from glabella line
+    double tipProtrusion = 20; ///< sn to prn, forward
+    double tipRise = 4;        ///< prn above sn
+    double dorsumHump = 0;     ///< mm of convexity on the dorsum (negative: concave)
+    double bridgeWidth = 6;    ///< half width of the dorsum
+    double tipWidth = 9;       ///< half width of the lobule
+    double alaSize = 7;        ///< radius of an alar lobule
+    double nostrilSize = 3.5;  ///< half length of a nostril
+    double nasionDepth = 0;    ///< nasion set back (+) from glabella line
 
     // Lips and mouth.
     double upperVermilion = 8.5; ///< ls-sto
@@ -82,27 +82,27 @@ struct FaceParams {
     double lipProtrusion = 2;
     double cupidBow = 1;
     double philtrumDepth = 0.8;
-    double cornerHeight = 0;     ///< mouth corners above (+) the slit line
+    double cornerHeight = 0; ///< mouth corners above (+) the slit line
 
     // Eyes and brows.
     double fissureHeight = 10.5;
     double canthalTilt = 2;
-    double eyeSet = 7;           ///< eyeball front behind the face envelope
+    double eyeSet = 7; ///< eyeball front behind the face envelope
     double browRidge = 3;
-    double browHeight = 18;      ///< eyebrow above the canthal line
+    double browHeight = 18; ///< eyebrow above the canthal line
 
     // Overall shape.
-    double faceDepth = 88;       ///< nasion distance in front of the head centre
-    double foreheadSlope = 0;    ///< degrees backwards
+    double faceDepth = 88;    ///< nasion distance in front of the head centre
+    double foreheadSlope = 0; ///< degrees backwards
     double headBreadth = 152;
     double cheekboneWidth = 136; ///< zy-zy
     double cheekboneHeight = 4;  ///< radial prominence
     double cheekFullness = 2;
-    double jawWidth = 102;       ///< go-go
-    double jawAngle = 0;         ///< squareness (-1..1 roughly)
-    double chinProjection = 0;   ///< pg forward of the sn-vertical
+    double jawWidth = 102;     ///< go-go
+    double jawAngle = 0;       ///< squareness (-1..1 roughly)
+    double chinProjection = 0; ///< pg forward of the sn-vertical
     double chinWidth = 14;
-    double chinHeight = 0;       ///< extra chin boss height (mm)
+    double chinHeight = 0; ///< extra chin boss height (mm)
     double neckWidth = 110;
 
     std::vector<DetailBump> detail;

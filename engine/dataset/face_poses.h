@@ -13,7 +13,7 @@
 namespace facesketch::dataset {
 
 struct PoseRecipe {
-    std::string name;     ///< file-name safe, e.g. "smile_open", "viseme_aa"
+    std::string name; ///< file-name safe, e.g. "smile_open", "viseme_aa"
     bool viseme = false;
     FaceActions actions;
 };

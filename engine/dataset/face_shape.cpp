@@ -105,8 +105,8 @@ double soft(const Frame& f, double theta0, double phi0, double X, double Y, int 
     if (std::abs(a) < 1) {
         const double taper = std::sqrt(1 - a * a);
         if (upper) {
-            const double h = p.upperVermilion * (0.3 + 0.7 * taper) *
-                             (1 - 0.1 * p.cupidBow * std::exp(-sq(a / 0.09)) + 0.05 * p.cupidBow * std::exp(-sq((std::abs(a) - 0.22) / 0.1)));
+            const double h = p.upperVermilion * (0.3 + 0.7 * taper)
+                * (1 - 0.1 * p.cupidBow * std::exp(-sq(a / 0.09)) + 0.05 * p.cupidBow * std::exp(-sq((std::abs(a) - 0.22) / 0.1)));
             const double t = b / h;
             double shape;
             if (t < 0.55)
@@ -202,7 +202,8 @@ ChartPoint warp(const Frame& f, double theta0, double phi0, int slit, bool eyeRo
     // Brows: inner and outer raise, lowering (with a pull towards the midline).
     const double q = smoothstep(-0.2, 1.2, a);
     const double lift = act.browInnerRaise * (1 - q) + act.browOuterRaise * q - act.browLower;
-    const double vertical = smoothstep(3 / R, (p.browHeight + 10) / R, b) * (1 - smoothstep((p.browHeight + 12) / R, (p.browHeight + 45) / R, b));
+    const double vertical
+        = smoothstep(3 / R, (p.browHeight + 10) / R, b) * (1 - smoothstep((p.browHeight + 12) / R, (p.browHeight + 45) / R, b));
     const double lateral = 1 - smoothstep(f.thetaEx + 5 / R, f.thetaEx + 30 / R, std::abs(theta0));
     dPhi += lift / R * vertical * lateral;
     dTheta -= sign * act.browLower * 0.25 / R * vertical * lateral * smoothstep(0, f.thetaEn, std::abs(theta0));
@@ -234,12 +235,12 @@ ChartPoint warp(const Frame& f, double theta0, double phi0, int slit, bool eyeRo
     // submental skin moves with the mandible), fading out towards the ears.
     double jaw = 1 - wu;
     jaw *= 1 - smoothstep(0.8, 1.75, std::abs(theta0));
-    return {theta0 + dTheta, phi0 + dPhi, jaw};
+    return { theta0 + dTheta, phi0 + dPhi, jaw };
 }
 
 // Everything about one vertex's skin radius.
-double skinRadius(const Frame& f, double theta, double phi, double theta0, double phi0, int slit, const FaceActions& act,
-                  bool eyeMargin = false)
+double skinRadius(
+    const Frame& f, double theta, double phi, double theta0, double phi0, int slit, const FaceActions& act, bool eyeMargin = false)
 {
     const double rho = rhoBase(f, theta, phi);
     const double X = rho * std::sin(theta), Y = rho * std::tan(phi);
@@ -263,7 +264,7 @@ double skinRadius(const Frame& f, double theta, double phi, double theta0, doubl
 
 double detail::neutralRadius(const Frame& f, double theta, double phi)
 {
-    return skinRadius(f, theta, phi, theta, phi, 0, FaceActions{});
+    return skinRadius(f, theta, phi, theta, phi, 0, FaceActions {});
 }
 
 namespace {
@@ -286,10 +287,10 @@ Vertices synthesizeFace(const FaceTopology& t, const FaceParams& params, const F
 {
     const Frame f = makeFrame(params);
     const int half = t.mid;
-    const std::vector<std::pair<double, double>> eyeKnots = {{0, 0}, {t.sEn, f.thetaEn}, {t.sEx, f.thetaEx}, {half, kSide}};
-    const std::vector<std::pair<double, double>> noseKnots = {{0, 0}, {t.sEn, f.thetaAl}, {t.sEx, f.thetaEx}, {half, kSide}};
-    const std::vector<std::pair<double, double>> mouthKnots = {{0, 0}, {t.sCh, f.thetaCh}, {t.sEx, f.thetaEx}, {half, kSide}};
-    const std::vector<double> phiKnots = {0, f.phiBrow, f.phiN, 0, f.phiPrn, f.phiSn, f.phiLs, f.phiSto, f.phiLi, f.phiPg, f.phiGn, 0};
+    const std::vector<std::pair<double, double>> eyeKnots = { { 0, 0 }, { t.sEn, f.thetaEn }, { t.sEx, f.thetaEx }, { half, kSide } };
+    const std::vector<std::pair<double, double>> noseKnots = { { 0, 0 }, { t.sEn, f.thetaAl }, { t.sEx, f.thetaEx }, { half, kSide } };
+    const std::vector<std::pair<double, double>> mouthKnots = { { 0, 0 }, { t.sCh, f.thetaCh }, { t.sEx, f.thetaEx }, { half, kSide } };
+    const std::vector<double> phiKnots = { 0, f.phiBrow, f.phiN, 0, f.phiPrn, f.phiSn, f.phiLs, f.phiSto, f.phiLi, f.phiPg, f.phiGn, 0 };
     const auto& K = t.rowKnot;
 
     auto chart = [&](int row, int col) {
@@ -343,7 +344,7 @@ Vertices synthesizeFace(const FaceTopology& t, const FaceParams& params, const F
     }
 
     // Eyeballs: UV ellipsoids in each eye's frame, poles along its up axis.
-    const Component* eyes[2] = {t.labels.component("eye_right"), t.labels.component("eye_left")};
+    const Component* eyes[2] = { t.labels.component("eye_right"), t.labels.component("eye_left") };
     for (int s = 0; s < 2; ++s) {
         const Eye& e = f.eye[s];
         int v = eyes[s]->begin;
@@ -351,8 +352,8 @@ Vertices synthesizeFace(const FaceTopology& t, const FaceParams& params, const F
         // triangles (whose chords sag towards the eye) keep clear of it.
         const double a = e.a - 0.6, b = e.b - 0.6, c = e.c - 0.6;
         auto put = [&](double polar, double azimuth) {
-            const Eigen::Vector3d x = e.centre + a * std::sin(polar) * std::sin(azimuth) * e.right +
-                                      b * std::cos(polar) * e.up + c * std::sin(polar) * std::cos(azimuth) * e.forward;
+            const Eigen::Vector3d x = e.centre + a * std::sin(polar) * std::sin(azimuth) * e.right + b * std::cos(polar) * e.up
+                + c * std::sin(polar) * std::cos(azimuth) * e.forward;
             V.row(v++) = x.transpose();
         };
         put(0, 0);
@@ -418,8 +419,8 @@ Vertices synthesizeFace(const FaceTopology& t, const FaceParams& params, const F
 
     // Tongue: a flattened ellipsoid lying in the lower arch, its tip narrowed.
     const Component* tongue = t.labels.component("tongue");
-    const Eigen::Vector3d tongueCentre(0, yOcclusal - 8 + std::min(act.tongueUp, 3.0),
-                                       zFront - 28 + lowerShift + std::min(act.tongueForward, 2.5));
+    const Eigen::Vector3d tongueCentre(
+        0, yOcclusal - 8 + std::min(act.tongueUp, 3.0), zFront - 28 + lowerShift + std::min(act.tongueForward, 2.5));
     int v = tongue->begin;
     auto putTongue = [&](double polar, double azimuth) {
         const double z = std::sin(polar) * std::cos(azimuth);

@@ -15,16 +15,19 @@ namespace facesketch::dataset {
 const char* resolutionName(Resolution r)
 {
     switch (r) {
-    case Resolution::Low: return "low";
-    case Resolution::High: return "high";
-    case Resolution::Ultra: return "ultra";
+    case Resolution::Low:
+        return "low";
+    case Resolution::High:
+        return "high";
+    case Resolution::Ultra:
+        return "ultra";
     }
     return "?";
 }
 
 Resolution parseResolution(const std::string& text)
 {
-    return parseName(text, std::array{Resolution::Low, Resolution::High, Resolution::Ultra}, resolutionName, "resolution");
+    return parseName(text, std::array { Resolution::Low, Resolution::High, Resolution::Ultra }, resolutionName, "resolution");
 }
 
 int FaceTopology::lowerCopy(int row, int col) const
@@ -49,7 +52,7 @@ int FaceTopology::lowerCopy(int row, int col) const
 namespace {
 
 struct Spec {
-    int colSegments[4]; // mid->en, en->ch, ch->ex, ex->side
+    int colSegments[4];  // mid->en, en->ch, ch->ex, ex->side
     int rowSegments[11]; // top, brow, n, eye, prn, sn, ls, sto, li, pg, gn, bottom
     int eyeRings, eyeSegments, archSamples, archSection, tongueRings, tongueSegments;
 };
@@ -57,10 +60,12 @@ struct Spec {
 Spec spec(Resolution r)
 {
     switch (r) {
-    case Resolution::Low: return {{3, 2, 3, 5}, {3, 1, 2, 5, 2, 2, 2, 2, 2, 2, 3}, 6, 7, 7, 4, 4, 6};
-    case Resolution::High: return {{9, 6, 8, 14}, {8, 3, 6, 12, 5, 5, 5, 5, 5, 6, 8}, 13, 13, 25, 8, 10, 14};
+    case Resolution::Low:
+        return { { 3, 2, 3, 5 }, { 3, 1, 2, 5, 2, 2, 2, 2, 2, 2, 3 }, 6, 7, 7, 4, 4, 6 };
+    case Resolution::High:
+        return { { 9, 6, 8, 14 }, { 8, 3, 6, 12, 5, 5, 5, 5, 5, 6, 8 }, 13, 13, 25, 8, 10, 14 };
     case Resolution::Ultra:
-        return {{19, 13, 17, 30}, {17, 6, 13, 25, 10, 11, 10, 10, 11, 12, 17}, 24, 25, 49, 16, 20, 28};
+        return { { 19, 13, 17, 30 }, { 17, 6, 13, 25, 10, 11, 10, 10, 11, 12, 17 }, 24, 25, 49, 16, 20, 28 };
     }
     return spec(Resolution::Low);
 }
@@ -122,22 +127,21 @@ FaceTopology buildFaceTopology(Resolution resolution)
     t.archSection = sp.archSection;
     t.tongueRings = sp.tongueRings;
     t.tongueSegments = sp.tongueSegments;
-    const int kBrow = t.rowKnot[1], kN = t.rowKnot[2], kEye = t.rowKnot[3], kPrn = t.rowKnot[4],
-              kSn = t.rowKnot[5], kLs = t.rowKnot[6], kSto = t.rowKnot[7], kLi = t.rowKnot[8],
-              kPg = t.rowKnot[9], kGn = t.rowKnot[10];
+    const int kBrow = t.rowKnot[1], kN = t.rowKnot[2], kEye = t.rowKnot[3], kPrn = t.rowKnot[4], kSn = t.rowKnot[5], kLs = t.rowKnot[6],
+              kSto = t.rowKnot[7], kLi = t.rowKnot[8], kPg = t.rowKnot[9], kGn = t.rowKnot[10];
 
     // Skin vertices: the grid, then lower slit copies in lowerCopy()'s order.
     for (int r = 0; r < t.rows; ++r)
         for (int c = 0; c < t.cols; ++c) {
             const bool slit = t.lowerCopy(r, c) >= 0;
-            t.skin.push_back({r, c, slit ? +1 : 0});
+            t.skin.push_back({ r, c, slit ? +1 : 0 });
         }
     for (int s = -t.sEx + 1; s <= -t.sEn - 1; ++s)
-        t.skin.push_back({kEye, t.mid + s, -1});
+        t.skin.push_back({ kEye, t.mid + s, -1 });
     for (int s = t.sEn + 1; s <= t.sEx - 1; ++s)
-        t.skin.push_back({kEye, t.mid + s, -1});
+        t.skin.push_back({ kEye, t.mid + s, -1 });
     for (int s = -t.sCh + 1; s <= t.sCh - 1; ++s)
-        t.skin.push_back({kSto, t.mid + s, -1});
+        t.skin.push_back({ kSto, t.mid + s, -1 });
     const int nSkin = static_cast<int>(t.skin.size());
     for (int i = t.rows * t.cols; i < nSkin; ++i)
         if (t.lowerCopy(t.skin[i].row, t.skin[i].col) != i)
@@ -163,22 +167,22 @@ FaceTopology buildFaceTopology(Resolution resolution)
 
     Manifest& m = t.labels;
     int next = nSkin;
-    m.components.push_back({"skin", 0, nSkin});
+    m.components.push_back({ "skin", 0, nSkin });
     const int eyeCount = 2 + t.eyeRings * t.eyeSegments;
-    for (const char* name : {"eye_right", "eye_left"}) {
+    for (const char* name : { "eye_right", "eye_left" }) {
         addSphere(tris, next, t.eyeRings, t.eyeSegments);
-        m.components.push_back({name, next, next + eyeCount});
+        m.components.push_back({ name, next, next + eyeCount });
         next += eyeCount;
     }
     const int archCount = 2 + t.archSamples * t.archSection;
-    for (const char* name : {"teeth_upper", "teeth_lower"}) {
+    for (const char* name : { "teeth_upper", "teeth_lower" }) {
         addTube(tris, next, t.archSamples, t.archSection);
-        m.components.push_back({name, next, next + archCount});
+        m.components.push_back({ name, next, next + archCount });
         next += archCount;
     }
     const int tongueCount = 2 + t.tongueRings * t.tongueSegments;
     addSphere(tris, next, t.tongueRings, t.tongueSegments);
-    m.components.push_back({"tongue", next, next + tongueCount});
+    m.components.push_back({ "tongue", next, next + tongueCount });
     next += tongueCount;
 
     m.vertexCount = next;
@@ -222,7 +226,7 @@ FaceTopology buildFaceTopology(Resolution resolution)
 
     // Contours (thesis 4.3.3).
     auto& C = m.contours;
-    for (int side : {1, -1}) {
+    for (int side : { 1, -1 }) {
         const std::string sfx = side > 0 ? "_l" : "_r";
         std::vector<int>& brow = C["eyebrow" + sfx];
         for (int s = t.sEn; s <= t.sEx + 1; ++s)
@@ -252,7 +256,7 @@ FaceTopology buildFaceTopology(Resolution resolution)
     const int rc = kSn - std::max(1, static_cast<int>(std::lround((kSn - kPrn) * 0.4)));
     const int sc = std::max(1, static_cast<int>(std::lround(t.sEn * 0.45)));
     const int dr = std::max(1, (kSn - kPrn) / 3), dc = std::max(1, t.sEn / 4);
-    for (int side : {1, -1}) {
+    for (int side : { 1, -1 }) {
         std::vector<int>& ring = C[side > 0 ? "nostril_l" : "nostril_r"];
         for (int k = 0; k < 8; ++k) {
             const double angle = 2 * M_PI * k / 8;

@@ -44,25 +44,24 @@ struct Range {
     const char* name;
     int begin, end;
 };
-constexpr Range kEyeSocketLeft{"eye_socket_left", 13294, 13678};
-constexpr Range kEyeSocketRight{"eye_socket_right", 13678, 14062};
-constexpr Range kEyeLeft{"eye_left", 21451, 23021};
-constexpr Range kEyeRight{"eye_right", 23021, 24591};
-constexpr Range kMouthSocket{"mouth_socket", 11248, 13294};
+constexpr Range kEyeSocketLeft { "eye_socket_left", 13294, 13678 };
+constexpr Range kEyeSocketRight { "eye_socket_right", 13678, 14062 };
+constexpr Range kEyeLeft { "eye_left", 21451, 23021 };
+constexpr Range kEyeRight { "eye_right", 23021, 24591 };
+constexpr Range kMouthSocket { "mouth_socket", 11248, 13294 };
 // ICT's "gums and tongue" range [14062, 17039) is one connected mesh; its last 428 vertices are
 // the tongue body (open at the root, sewn to the floor of the mouth by 25 edges along the
 // frenulum). See import_ict.h for how the split was found.
-constexpr Range kGums{"gums", 14062, 16611};
-constexpr Range kTongue{"tongue", 16611, 17039};
-constexpr Range kTeethUpper{"teeth_upper", 17039, 19247};
-constexpr Range kTeethLower{"teeth_lower", 19247, 21451};
+constexpr Range kGums { "gums", 14062, 16611 };
+constexpr Range kTongue { "tongue", 16611, 17039 };
+constexpr Range kTeethUpper { "teeth_upper", 17039, 19247 };
+constexpr Range kTeethLower { "teeth_lower", 19247, 21451 };
 
 // The 68 Multi-PIE landmarks as listed in ICT-FaceKit's README (used if vertex_indices.json is absent).
-constexpr int kReadmeLandmarks[68] = {
-    1225, 1888, 1052, 367,  1719, 1722, 2199, 1447, 966,  3661, 4390, 3927, 3924, 2608, 3272, 4088, 3443,
-    268,  493,  1914, 2044, 1401, 3615, 4240, 4114, 2734, 2509, 978,  4527, 4942, 4857, 1140, 2075, 1147,
-    4269, 3360, 1507, 1542, 1537, 1528, 1518, 1511, 3742, 3751, 3756, 3721, 3725, 3732, 5708, 5695, 2081,
-    0,    4275, 6200, 6213, 6346, 6461, 5518, 5957, 5841, 5702, 5711, 5533, 6216, 6207, 6470, 5517, 5966};
+constexpr int kReadmeLandmarks[68] = { 1225, 1888, 1052, 367, 1719, 1722, 2199, 1447, 966, 3661, 4390, 3927, 3924, 2608, 3272, 4088, 3443,
+    268, 493, 1914, 2044, 1401, 3615, 4240, 4114, 2734, 2509, 978, 4527, 4942, 4857, 1140, 2075, 1147, 4269, 3360, 1507, 1542, 1537, 1528,
+    1518, 1511, 3742, 3751, 3756, 3721, 3725, 3732, 5708, 5695, 2081, 0, 4275, 6200, 6213, 6346, 6461, 5518, 5957, 5841, 5702, 5711, 5533,
+    6216, 6207, 6470, 5517, 5966 };
 
 std::uint64_t splitmix64(std::uint64_t x)
 {
@@ -114,8 +113,7 @@ Vertices readObjPositions(const fs::path& path)
             double value = 0;
             const auto [next, ec] = std::from_chars(p, e, value);
             if (ec != std::errc() || (next < e && *next != ' ' && *next != '\t' && *next != '\r'))
-                fail(path.string(), ":", line, ": vertex coordinate ", "xyz"[c], " is missing or not a number: '",
-                     lineText, "'");
+                fail(path.string(), ":", line, ": vertex coordinate ", "xyz"[c], " is missing or not a number: '", lineText, "'");
             if (!std::isfinite(value))
                 fail(path.string(), ":", line, ": vertex coordinate ", "xyz"[c], " is ", value);
             xyz.push_back(value);
@@ -131,7 +129,7 @@ std::vector<int> readLandmarkIndices(const fs::path& folder)
 {
     const fs::path file = folder / "vertex_indices.json";
     if (!fs::exists(file))
-        return {std::begin(kReadmeLandmarks), std::end(kReadmeLandmarks)};
+        return { std::begin(kReadmeLandmarks), std::end(kReadmeLandmarks) };
     std::ifstream in(file);
     nlohmann::json doc;
     try {
@@ -147,8 +145,7 @@ std::vector<int> readLandmarkIndices(const fs::path& folder)
     std::vector<int> out;
     for (size_t i = 0; i < list.size(); ++i) {
         if (!list[i].is_number_integer() || list[i].get<long>() < 0 || list[i].get<long>() >= kIctVertexCount)
-            fail(file.string(), ": idx_to_landmark_verts[", i, "]: '", list[i].dump(), "' is not a vertex index below ",
-                 kIctVertexCount);
+            fail(file.string(), ": idx_to_landmark_verts[", i, "]: '", list[i].dump(), "' is not a vertex index below ", kIctVertexCount);
         out.push_back(list[i].get<int>());
     }
     return out;
@@ -171,7 +168,7 @@ Graph skinGraph(const Vertices& V, const Triangles& F, int skinEnd)
     Graph g(nb.size());
     for (size_t a = 0; a < nb.size(); ++a)
         for (int b : nb[a])
-            g[a].push_back({b, (V.row(static_cast<Eigen::Index>(a)) - V.row(b)).norm()});
+            g[a].push_back({ b, (V.row(static_cast<Eigen::Index>(a)) - V.row(b)).norm() });
     return g;
 }
 
@@ -183,7 +180,7 @@ std::vector<int> shortestPath(const Graph& g, int from, int to)
     using Item = std::pair<double, int>;
     std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
     dist[static_cast<size_t>(from)] = 0;
-    queue.push({0.0, from});
+    queue.push({ 0.0, from });
     while (!queue.empty()) {
         const auto [d, v] = queue.top();
         queue.pop();
@@ -195,12 +192,12 @@ std::vector<int> shortestPath(const Graph& g, int from, int to)
             if (d + length < dist[static_cast<size_t>(w)]) {
                 dist[static_cast<size_t>(w)] = d + length;
                 prev[static_cast<size_t>(w)] = v;
-                queue.push({d + length, w});
+                queue.push({ d + length, w });
             }
     }
     if (from != to && prev[static_cast<size_t>(to)] < 0)
         fail("import ict-facekit: no skin path from vertex ", from, " to ", to, " (region too small?)");
-    std::vector<int> path{to};
+    std::vector<int> path { to };
     while (path.back() != from)
         path.push_back(prev[static_cast<size_t>(path.back())]);
     std::reverse(path.begin(), path.end());
@@ -210,7 +207,7 @@ std::vector<int> shortestPath(const Graph& g, int from, int to)
 // Shortest path through `anchors` in order; `closed` also returns to the first (not repeated).
 std::vector<int> pathThrough(const Graph& g, const std::vector<int>& anchors, bool closed = false)
 {
-    std::vector<int> out{anchors.front()};
+    std::vector<int> out { anchors.front() };
     std::vector<int> stops(anchors.begin() + 1, anchors.end());
     if (closed)
         stops.push_back(anchors.front());
@@ -240,8 +237,7 @@ Vertices normalsWithin(const Vertices& V, const Triangles& F, int begin, int end
     auto within = [&](int v) { return v >= begin && v < end; };
     for (Eigen::Index f = 0; f < F.rows(); ++f)
         if (within(F(f, 0)) && within(F(f, 1)) && within(F(f, 2))) {
-            const Eigen::RowVector3d n =
-                (V.row(F(f, 1)) - V.row(F(f, 0))).cross(V.row(F(f, 2)) - V.row(F(f, 0)));
+            const Eigen::RowVector3d n = (V.row(F(f, 1)) - V.row(F(f, 0))).cross(V.row(F(f, 2)) - V.row(F(f, 0)));
             for (int k = 0; k < 3; ++k)
                 N.row(F(f, k)) += n;
         }
@@ -255,8 +251,8 @@ Vertices normalsWithin(const Vertices& V, const Triangles& F, int begin, int end
 // nostril's cavity, grown from its deepest vertex, as a closed loop starting nearest sbal.
 // The cavity's vertices inside the rim are appended to `hidden`: seen only from below the nose,
 // they are no contour candidates (thesis 4.3.3).
-std::vector<int> nostrilRing(const Vertices& V, const Triangles& F, const Graph& g, const Vertices& normals,
-                             const std::vector<int>& pie, int side, std::vector<int>& hidden)
+std::vector<int> nostrilRing(const Vertices& V, const Triangles& F, const Graph& g, const Vertices& normals, const std::vector<int>& pie,
+    int side, std::vector<int>& hidden)
 {
     const int skinEnd = static_cast<int>(g.size());
     const char* name = side > 0 ? "nostril_l" : "nostril_r";
@@ -268,14 +264,14 @@ std::vector<int> nostrilRing(const Vertices& V, const Triangles& F, const Graph&
     auto depth = [&](int v) { return (right - V.row(v)).dot(out); };
     int apex = -1;
     for (int v = 0; v < skinEnd; ++v)
-        if (side * V(v, 0) > 0 && side * V(v, 0) < side * V(sbal, 0) && (V.row(v) - V.row(sn)).norm() < 20 &&
-            (apex < 0 || depth(v) > depth(apex)))
+        if (side * V(v, 0) > 0 && side * V(v, 0) < side * V(sbal, 0) && (V.row(v) - V.row(sn)).norm() < 20
+            && (apex < 0 || depth(v) > depth(apex)))
             apex = v;
     if (apex < 0)
         fail("import ict-facekit: ", name, ": no skin vertex between sn and sbal (region too small?)");
 
     std::vector<char> inside(static_cast<size_t>(skinEnd), 0);
-    std::vector<int> stack{apex};
+    std::vector<int> stack { apex };
     inside[static_cast<size_t>(apex)] = 1;
     auto grow = [&](const std::function<bool(int)>& keep) {
         while (!stack.empty()) {
@@ -303,15 +299,15 @@ std::vector<int> nostrilRing(const Vertices& V, const Triangles& F, const Graph&
             all = all && F(f, k) < skinEnd && inside[static_cast<size_t>(F(f, k))];
         if (all)
             for (int k = 0; k < 3; ++k)
-                edges.insert({F(f, k), F(f, (k + 1) % 3)});
+                edges.insert({ F(f, k), F(f, (k + 1) % 3) });
     }
     std::map<int, int> next;
     for (const auto& [a, b] : edges)
-        if (!edges.count({b, a}) && !next.emplace(a, b).second)
+        if (!edges.count({ b, a }) && !next.emplace(a, b).second)
             fail("import ict-facekit: ", name, ": the nostril's rim passes vertex ", a, " twice");
     if (next.empty())
         fail("import ict-facekit: ", name, ": no nostril cavity found at vertex ", apex);
-    std::vector<int> ring{next.begin()->first};
+    std::vector<int> ring { next.begin()->first };
     while (ring.size() <= next.size()) {
         const auto it = next.find(ring.back());
         if (it == next.end() || it->second == ring.front())
@@ -319,14 +315,13 @@ std::vector<int> nostrilRing(const Vertices& V, const Triangles& F, const Graph&
         ring.push_back(it->second);
     }
     if (ring.size() != next.size())
-        fail("import ict-facekit: ", name, ": the nostril's rim is not one closed loop (", ring.size(), " of ",
-             next.size(), " edges)");
+        fail("import ict-facekit: ", name, ": the nostril's rim is not one closed loop (", ring.size(), " of ", next.size(), " edges)");
     auto fromSbal = [&](int v) { return (V.row(v) - V.row(sbal)).norm(); };
     for (int v : ring)
         if (fromSbal(v) > 25)
             fail("import ict-facekit: ", name, ": rim vertex ", v, " is ", fromSbal(v), " mm from sbal (cavity leaked)");
-    std::rotate(ring.begin(), std::min_element(ring.begin(), ring.end(), [&](int a, int b) { return fromSbal(a) < fromSbal(b); }),
-                ring.end());
+    std::rotate(
+        ring.begin(), std::min_element(ring.begin(), ring.end(), [&](int a, int b) { return fromSbal(a) < fromSbal(b); }), ring.end());
     const std::set<int> rim(ring.begin(), ring.end());
     for (int v = 0; v < skinEnd; ++v)
         if (inside[static_cast<size_t>(v)] && !rim.count(v))
@@ -380,26 +375,26 @@ void labelSkin(Manifest& m, const Vertices& V, const std::vector<int>& pie, int 
     L["s"] = best([&](int v) { return midline(v, y(pie[29]), y(L["g"])); }, [&](int v) { return -z(v); }, "s");
     L["pg"] = best([&](int v) { return midline(v, y(pie[8]), y(pie[57]) - 5); }, z, "pg");
     L["sl"] = best([&](int v) { return midline(v, y(L["pg"]), y(pie[57])); }, [&](int v) { return -z(v); }, "sl");
-    for (int side : {1, -1}) {
+    for (int side : { 1, -1 }) {
         const std::string sfx = side > 0 ? "_l" : "_r";
         const int sbal = L["sbal" + sfx];
         L["al" + sfx] = best(
             [&](int v) {
-                return side * V(v, 0) > 0 && side * V(v, 0) < 2.5 * std::abs(V(sbal, 0)) && y(v) >= y(sbal) - 2 &&
-                       y(v) <= y(L["prn"]) && z(v) >= z(sbal) - 2;
+                return side * V(v, 0) > 0 && side * V(v, 0) < 2.5 * std::abs(V(sbal, 0)) && y(v) >= y(sbal) - 2 && y(v) <= y(L["prn"])
+                    && z(v) >= z(sbal) - 2;
             },
             [&](int v) { return side * V(v, 0); }, "al");
     }
 
     auto& C = m.contours;
-    C["eyebrow_r"] = pathThrough(g, {pie[21], pie[20], pie[19], pie[18], pie[17]});
-    C["eyebrow_l"] = pathThrough(g, {pie[22], pie[23], pie[24], pie[25], pie[26]});
-    const std::vector<int> upperR = pathThrough(g, {pie[39], pie[38], pie[37], pie[36]});
-    const std::vector<int> lowerR = pathThrough(g, {pie[36], pie[41], pie[40], pie[39]});
-    const std::vector<int> upperL = pathThrough(g, {pie[42], pie[43], pie[44], pie[45]});
-    const std::vector<int> lowerL = pathThrough(g, {pie[45], pie[46], pie[47], pie[42]});
-    C["eye_socket_r"] = pathThrough(g, {pie[39], pie[38], pie[37], pie[36], pie[41], pie[40]}, true);
-    C["eye_socket_l"] = pathThrough(g, {pie[42], pie[43], pie[44], pie[45], pie[46], pie[47]}, true);
+    C["eyebrow_r"] = pathThrough(g, { pie[21], pie[20], pie[19], pie[18], pie[17] });
+    C["eyebrow_l"] = pathThrough(g, { pie[22], pie[23], pie[24], pie[25], pie[26] });
+    const std::vector<int> upperR = pathThrough(g, { pie[39], pie[38], pie[37], pie[36] });
+    const std::vector<int> lowerR = pathThrough(g, { pie[36], pie[41], pie[40], pie[39] });
+    const std::vector<int> upperL = pathThrough(g, { pie[42], pie[43], pie[44], pie[45] });
+    const std::vector<int> lowerL = pathThrough(g, { pie[45], pie[46], pie[47], pie[42] });
+    C["eye_socket_r"] = pathThrough(g, { pie[39], pie[38], pie[37], pie[36], pie[41], pie[40] }, true);
+    C["eye_socket_l"] = pathThrough(g, { pie[42], pie[43], pie[44], pie[45], pie[46], pie[47] }, true);
     auto highest = [&](const std::vector<int>& path, int sign) {
         return *std::max_element(path.begin(), path.end(), [&](int a, int b) { return sign * y(a) < sign * y(b); });
     };
@@ -407,19 +402,18 @@ void labelSkin(Manifest& m, const Vertices& V, const std::vector<int>& pie, int 
     L["pi_r"] = highest(lowerR, -1);
     L["ps_l"] = highest(upperL, 1);
     L["pi_l"] = highest(lowerL, -1);
-    for (const std::string sfx : {"_l", "_r"}) {
+    for (const std::string sfx : { "_l", "_r" }) {
         const std::vector<int>& brow = C["eyebrow" + sfx];
         const double px = V(L["ps" + sfx], 0);
-        L["os" + sfx] = *std::min_element(brow.begin(), brow.end(), [&](int a, int b) {
-            return std::abs(V(a, 0) - px) < std::abs(V(b, 0) - px);
-        });
+        L["os" + sfx]
+            = *std::min_element(brow.begin(), brow.end(), [&](int a, int b) { return std::abs(V(a, 0) - px) < std::abs(V(b, 0) - px); });
         const std::vector<int> up = shortestPath(g, L["en" + sfx], brow.front());
         L["mf" + sfx] = up[up.size() / 3];
     }
-    C["lip_upper_outer"] = pathThrough(g, {pie[48], pie[49], pie[50], pie[51], pie[52], pie[53], pie[54]});
-    C["lip_lower_outer"] = pathThrough(g, {pie[48], pie[59], pie[58], pie[57], pie[56], pie[55], pie[54]});
-    C["lip_upper_inner"] = pathThrough(g, {pie[48], pie[60], pie[61], pie[62], pie[63], pie[64], pie[54]});
-    C["lip_lower_inner"] = pathThrough(g, {pie[48], pie[60], pie[67], pie[66], pie[65], pie[64], pie[54]});
+    C["lip_upper_outer"] = pathThrough(g, { pie[48], pie[49], pie[50], pie[51], pie[52], pie[53], pie[54] });
+    C["lip_lower_outer"] = pathThrough(g, { pie[48], pie[59], pie[58], pie[57], pie[56], pie[55], pie[54] });
+    C["lip_upper_inner"] = pathThrough(g, { pie[48], pie[60], pie[61], pie[62], pie[63], pie[64], pie[54] });
+    C["lip_lower_inner"] = pathThrough(g, { pie[48], pie[60], pie[67], pie[66], pie[65], pie[64], pie[54] });
     const Vertices normals = normalsWithin(V, m.topology, 0, skinEnd);
     C["nostril_l"] = nostrilRing(V, m.topology, g, normals, pie, 1, m.excluded);
     C["nostril_r"] = nostrilRing(V, m.topology, g, normals, pie, -1, m.excluded);
@@ -448,11 +442,11 @@ void labelSkin(Manifest& m, const Vertices& V, const std::vector<int>& pie, int 
     M["4.4"] = pie[19];
     M["4.5"] = pie[26];
     M["4.6"] = pie[17];
-    for (int side : {1, -1}) {
+    for (int side : { 1, -1 }) {
         const int ex = side > 0 ? L["ex_l"] : L["ex_r"];
         const double ty = 0.5 * (y(ex) + y(L["prn"]));
-        M[side > 0 ? "5.3" : "5.4"] = best([&](int v) { return std::abs(V(v, 0) - V(ex, 0)) < 3 && std::abs(y(v) - ty) < 3; },
-                                           z, "cheekbone");
+        M[side > 0 ? "5.3" : "5.4"]
+            = best([&](int v) { return std::abs(V(v, 0) - V(ex, 0)) < 3 && std::abs(y(v) - ty) < 3; }, z, "cheekbone");
     }
     M["8.1"] = L["ls"];
     M["8.2"] = L["li"];
@@ -491,8 +485,7 @@ int robustTip(const Vertices& neutral, const Eigen::MatrixXd& modes, const std::
                 p(k) += modes.row(3 * v + k).dot(c);
             return p;
         };
-        const Eigen::RowVector3d forward =
-            (position(pie[45]) - position(pie[36])).cross(position(pie[27]) - position(pie[8])).normalized();
+        const Eigen::RowVector3d forward = (position(pie[45]) - position(pie[36])).cross(position(pie[27]) - position(pie[8])).normalized();
         int front = 0;
         double frontZ = -std::numeric_limits<double>::infinity();
         for (int v = 0; v < skinEnd; ++v) {
@@ -546,7 +539,7 @@ void labelLowerTeeth(Manifest& m, const Vertices& V, const Component& teeth)
         }
         mx /= static_cast<double>(vs.size());
         if (mx > 0)
-            left.push_back({mx, top});
+            left.push_back({ mx, top });
     }
     std::sort(left.begin(), left.end());
     if (left.size() < 3)
@@ -596,16 +589,19 @@ void labelTongue(Manifest& m, const Vertices& V, const Component& tongue)
 const char* ictRegionName(IctRegion region)
 {
     switch (region) {
-    case IctRegion::NarrowFace: return "narrow";
-    case IctRegion::Face: return "face";
-    case IctRegion::HeadNeck: return "head";
+    case IctRegion::NarrowFace:
+        return "narrow";
+    case IctRegion::Face:
+        return "face";
+    case IctRegion::HeadNeck:
+        return "head";
     }
     return "?";
 }
 
 IctRegion parseIctRegion(const std::string& text)
 {
-    return parseName(text, std::array{IctRegion::NarrowFace, IctRegion::Face, IctRegion::HeadNeck}, ictRegionName, "region");
+    return parseName(text, std::array { IctRegion::NarrowFace, IctRegion::Face, IctRegion::HeadNeck }, ictRegionName, "region");
 }
 
 IctPoseRecipes readIctPoseRecipes(const fs::path& path)
@@ -636,7 +632,7 @@ IctPoseRecipes readIctPoseRecipes(const fs::path& path)
                 fail(path.string(), ": ", name, ".", shape, ": weight '", weight.dump(), "' is not a finite number");
             recipe[shape] = weight.get<double>();
         }
-        out.push_back({name, recipe});
+        out.push_back({ name, recipe });
     }
     return out;
 }
@@ -652,18 +648,18 @@ IctModel loadIctModel(const fs::path& path, const IctOptions& options, const std
 
     // Kept vertex ranges, in output order; skin first.
     const int skinEnd = options.region == IctRegion::NarrowFace ? 6706 : options.region == IctRegion::Face ? 9409 : 11248;
-    std::vector<Range> ranges{{"skin", 0, skinEnd}};
+    std::vector<Range> ranges { { "skin", 0, skinEnd } };
     if (options.eyes)
-        for (const Range& r : {kEyeSocketLeft, kEyeSocketRight, kEyeLeft, kEyeRight})
+        for (const Range& r : { kEyeSocketLeft, kEyeSocketRight, kEyeLeft, kEyeRight })
             ranges.push_back(r);
     if (options.mouth)
-        for (const Range& r : {kMouthSocket, kGums, kTongue, kTeethUpper, kTeethLower})
+        for (const Range& r : { kMouthSocket, kGums, kTongue, kTeethUpper, kTeethLower })
             ranges.push_back(r);
     std::vector<int> newIndex(kIctVertexCount, -1), kept;
     IctModel model;
     Manifest& m = model.labels;
     for (const Range& r : ranges) {
-        m.components.push_back({r.name, static_cast<int>(kept.size()), static_cast<int>(kept.size()) + r.end - r.begin});
+        m.components.push_back({ r.name, static_cast<int>(kept.size()), static_cast<int>(kept.size()) + r.end - r.begin });
         for (int v = r.begin; v < r.end; ++v) {
             newIndex[static_cast<size_t>(v)] = static_cast<int>(kept.size());
             kept.push_back(v);
@@ -723,8 +719,7 @@ IctModel loadIctModel(const fs::path& path, const IctOptions& options, const std
             fail(folder.string(), ": landmark vertex ", v, " is outside the ", ictRegionName(options.region), " region");
         landmarks.push_back(newIndex[static_cast<size_t>(v)]);
     }
-    labelSkin(m, model.neutral, landmarks, skinEnd,
-              robustTip(model.neutral, model.identityModes, landmarks, skinEnd));
+    labelSkin(m, model.neutral, landmarks, skinEnd, robustTip(model.neutral, model.identityModes, landmarks, skinEnd));
     if (options.mouth) {
         labelTongue(m, model.neutral, *m.component("tongue"));
         labelLowerTeeth(m, model.neutral, *m.component("teeth_lower"));
@@ -791,22 +786,23 @@ Manifest writeIctDataset(const fs::path& path, const fs::path& output, const Ict
         m = simplifyManifest(m, simplification);
     }
     const std::vector<Role> roles = synthRoles(options.identities);
-    const int posed = !options.poses ? 0 : options.poseIdentities < 0 ? options.identities
-                                                                       : std::min(options.poseIdentities, options.identities);
+    const int posed = !options.poses ? 0
+        : options.poseIdentities < 0 ? options.identities
+                                     : std::min(options.poseIdentities, options.identities);
     for (int i = 0; i < options.identities; ++i) {
         char name[32];
         std::snprintf(name, sizeof name, "face_%04d", i);
-        m.samples.push_back({name, fs::path("faces") / (std::string(name) + ".ply"), roles[static_cast<size_t>(i)]});
+        m.samples.push_back({ name, fs::path("faces") / (std::string(name) + ".ply"), roles[static_cast<size_t>(i)] });
         if (i < posed)
             for (const auto& [pose, recipe] : recipes)
-                m.poses.push_back({name, pose, fs::path("poses") / name / (pose + ".ply")});
+                m.poses.push_back({ name, pose, fs::path("poses") / name / (pose + ".ply") });
     }
 
     const int modes = static_cast<int>(model.identityModes.cols());
     writeDataset(output, m, [&](const fs::path& tmp) {
         fs::create_directories(tmp / "faces");
         auto write = [&](const fs::path& file, const Vertices& V) {
-            writePly(tmp / file, Mesh{simplify ? keepVertices(V, simplification) : V, m.topology});
+            writePly(tmp / file, Mesh { simplify ? keepVertices(V, simplification) : V, m.topology });
         };
         size_t pose = 0;
         for (int i = 0; i < options.identities; ++i) {

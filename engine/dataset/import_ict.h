@@ -96,7 +96,7 @@ const char* ictRegionName(IctRegion region);
 IctRegion parseIctRegion(const std::string& text);
 
 struct IctOptions {
-    int identities = 250;          ///< thesis 3.1: 182 train + 48 contour + 20 test
+    int identities = 250; ///< thesis 3.1: 182 train + 48 contour + 20 test
     std::uint64_t seed = 1;
     IctRegion region = IctRegion::Face;
     bool eyes = false;             ///< eye sockets and eyeballs
@@ -116,16 +116,15 @@ IctPoseRecipes readIctPoseRecipes(const std::filesystem::path& path);
 
 /// The ICT model cut to a region, in mm, with the dataset labels of that region.
 struct IctModel {
-    Manifest labels;                ///< vertexCount, topology, components, landmarks, mpeg4, contours, excluded
-    Vertices neutral;               ///< #V by 3, mm
-    Eigen::MatrixXd identityModes;  ///< 3#V by #modes, column i = flatten(identity_i - neutral), mm
+    Manifest labels;                                       ///< vertexCount, topology, components, landmarks, mpeg4, contours, excluded
+    Vertices neutral;                                      ///< #V by 3, mm
+    Eigen::MatrixXd identityModes;                         ///< 3#V by #modes, column i = flatten(identity_i - neutral), mm
     std::map<std::string, Eigen::RowVectorXd> expressions; ///< name -> flatten(expression - neutral), 1 by 3#V, mm
 };
 
 /// Reads the model at `path` (see above) and the expressions named in `expressions`.
 /// Throws Error naming the file (and line, for malformed `v` lines) on bad input.
-IctModel loadIctModel(const std::filesystem::path& path, const IctOptions& options,
-                      const std::vector<std::string>& expressions = {});
+IctModel loadIctModel(const std::filesystem::path& path, const IctOptions& options, const std::vector<std::string>& expressions = {});
 
 /// The #modes coefficients of identity `index`: independent N(0, 1) draws (see above).
 Eigen::VectorXd ictCoefficients(std::uint64_t seed, int index, int modes);
@@ -140,7 +139,6 @@ Vertices ictPose(const IctModel& model, const Vertices& identity, const std::map
 /// "faces/", roles as synth.h synthRoles (182 : 48 : 20, train first), poses in
 /// "poses/<sample>/<pose>.ply". Deterministic: equal options give byte-identical folders.
 /// Returns the manifest written.
-Manifest writeIctDataset(const std::filesystem::path& path, const std::filesystem::path& output,
-                         const IctOptions& options);
+Manifest writeIctDataset(const std::filesystem::path& path, const std::filesystem::path& output, const IctOptions& options);
 
 } // namespace facesketch::dataset

@@ -53,7 +53,7 @@ double readLabels(const fs::path& file, Manifest& m)
     }
     if (!doc.is_object())
         fail(file.string(), ": expected a JSON object");
-    static const std::set<std::string> known{"units", "landmarks", "mpeg4", "contours", "components", "excluded"};
+    static const std::set<std::string> known { "units", "landmarks", "mpeg4", "contours", "components", "excluded" };
     for (const auto& [key, value] : doc.items())
         if (!known.count(key))
             fail(file.string(), ": ", key, ": unknown key (known: units, landmarks, mpeg4, contours, components, excluded)");
@@ -69,7 +69,7 @@ double readLabels(const fs::path& file, Manifest& m)
         else
             fail(file.string(), ": units: '", u.dump(), "' is not one of \"mm\", \"cm\", \"m\"");
     }
-    for (const char* key : {"landmarks", "mpeg4"})
+    for (const char* key : { "landmarks", "mpeg4" })
         if (doc.contains(key)) {
             if (!doc[key].is_object())
                 fail(file.string(), ": ", key, ": expected an object {name: vertex}");
@@ -94,8 +94,8 @@ double readLabels(const fs::path& file, Manifest& m)
         for (const auto& [name, range] : doc["components"].items()) {
             if (!range.is_array() || range.size() != 2)
                 fail(file.string(), ": components.", name, ": expected [begin, end]");
-            m.components.push_back({name, vertexField(file, "components." + name + "[0]", range[0]),
-                                    vertexField(file, "components." + name + "[1]", range[1])});
+            m.components.push_back({ name, vertexField(file, "components." + name + "[0]", range[0]),
+                vertexField(file, "components." + name + "[1]", range[1]) });
         }
     }
     if (doc.contains("excluded")) {
@@ -153,21 +153,20 @@ Manifest importMeshes(const fs::path& folder, const fs::path& output, const Mesh
             m.topology = mesh.F;
         } else {
             if (mesh.vertexCount() != m.vertexCount)
-                fail(file.string(), ": has ", mesh.vertexCount(), " vertices, ", files.front().filename().string(), " has ",
-                     m.vertexCount, " (all meshes must share one topology)");
+                fail(file.string(), ": has ", mesh.vertexCount(), " vertices, ", files.front().filename().string(), " has ", m.vertexCount,
+                    " (all meshes must share one topology)");
             if (mesh.triangleCount() != m.topology.rows())
-                fail(file.string(), ": has ", mesh.triangleCount(), " triangles, ", files.front().filename().string(),
-                     " has ", m.topology.rows(), " (all meshes must share one topology)");
+                fail(file.string(), ": has ", mesh.triangleCount(), " triangles, ", files.front().filename().string(), " has ",
+                    m.topology.rows(), " (all meshes must share one topology)");
             for (Eigen::Index f = 0; f < mesh.triangleCount(); ++f)
                 if (mesh.F.row(f) != m.topology.row(f))
-                    fail(file.string(), ": triangle ", f, " (", mesh.F(f, 0), ", ", mesh.F(f, 1), ", ", mesh.F(f, 2),
-                         ") differs from ", files.front().filename().string(), "'s (", m.topology(f, 0), ", ",
-                         m.topology(f, 1), ", ", m.topology(f, 2), ")");
+                    fail(file.string(), ": triangle ", f, " (", mesh.F(f, 0), ", ", mesh.F(f, 1), ", ", mesh.F(f, 2), ") differs from ",
+                        files.front().filename().string(), "'s (", m.topology(f, 0), ", ", m.topology(f, 1), ", ", m.topology(f, 2), ")");
         }
         meshes.push_back(scale * mesh.V);
     }
     if (m.components.empty())
-        m.components.push_back({"skin", 0, m.vertexCount});
+        m.components.push_back({ "skin", 0, m.vertexCount });
     validateManifest(m, labels.string());
 
     Simplification simplification;
@@ -183,12 +182,12 @@ Manifest importMeshes(const fs::path& folder, const fs::path& output, const Mesh
     const std::vector<Role> roles = shuffledRoles(static_cast<int>(files.size()), options.seed);
     for (size_t i = 0; i < files.size(); ++i) {
         const std::string stem = files[i].stem().string();
-        m.samples.push_back({stem, fs::path("faces") / (stem + ".ply"), roles[i]});
+        m.samples.push_back({ stem, fs::path("faces") / (stem + ".ply"), roles[i] });
     }
     writeDataset(output, m, [&](const fs::path& tmp) {
         fs::create_directories(tmp / "faces");
         for (size_t i = 0; i < files.size(); ++i)
-            writePly(tmp / m.samples[i].file, Mesh{simplify ? keepVertices(meshes[i], simplification) : meshes[i], m.topology});
+            writePly(tmp / m.samples[i].file, Mesh { simplify ? keepVertices(meshes[i], simplification) : meshes[i], m.topology });
     });
     return m;
 }

@@ -35,9 +35,9 @@
 namespace facesketch::dataset {
 
 struct MeshImportOptions {
-    std::uint64_t seed = 1;        ///< role shuffle
-    int vertices = 0;              ///< > 0: simplify to about this many vertices (simplify.h)
-    std::filesystem::path labels;  ///< labels file; empty: DIR/landmarks.json if it exists
+    std::uint64_t seed = 1;       ///< role shuffle
+    int vertices = 0;             ///< > 0: simplify to about this many vertices (simplify.h)
+    std::filesystem::path labels; ///< labels file; empty: DIR/landmarks.json if it exists
 };
 
 /// Roles for `count` samples in file order: synthRoles(count) dealt out by the seeded shuffle.
@@ -46,7 +46,6 @@ std::vector<Role> shuffledRoles(int count, std::uint64_t seed);
 /// Reads the folder (see above) and writes the dataset folder `output` atomically
 /// (dataset.h writeDataset): nothing is written if any mesh or the labels are bad.
 /// Returns the manifest written. Throws Error naming the file (and line, for text formats).
-Manifest importMeshes(const std::filesystem::path& folder, const std::filesystem::path& output,
-                      const MeshImportOptions& options = {});
+Manifest importMeshes(const std::filesystem::path& folder, const std::filesystem::path& output, const MeshImportOptions& options = {});
 
 } // namespace facesketch::dataset

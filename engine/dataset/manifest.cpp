@@ -16,9 +16,12 @@ using nlohmann::json;
 const char* roleName(Role role)
 {
     switch (role) {
-    case Role::Train: return "train";
-    case Role::Contour: return "contour";
-    case Role::Test: return "test";
+    case Role::Train:
+        return "train";
+    case Role::Contour:
+        return "contour";
+    case Role::Test:
+        return "test";
     }
     return "?";
 }
@@ -120,8 +123,8 @@ void validateManifest(const Manifest& m, const std::string& where)
         for (size_t j = 0; j < i; ++j) {
             const Component& o = m.components[j];
             if (c.begin < o.end && o.begin < c.end)
-                fail(where, ": ", field, ": range [", c.begin, ", ", c.end, ") overlaps components.", o.name,
-                     " [", o.begin, ", ", o.end, ")");
+                fail(where, ": ", field, ": range [", c.begin, ", ", c.end, ") overlaps components.", o.name, " [", o.begin, ", ", o.end,
+                    ")");
         }
     }
     if (!m.component("skin"))
@@ -134,9 +137,8 @@ void validateManifest(const Manifest& m, const std::string& where)
     for (const auto& [name, v] : m.mpeg4) {
         // FDP names are "group.point" (MPEG-4 Annex C), e.g. "8.3".
         const auto dot = name.find('.');
-        const bool ok = dot != std::string::npos && dot > 0 && dot + 1 < name.size() &&
-                        name.find_first_not_of("0123456789.") == std::string::npos &&
-                        name.find('.', dot + 1) == std::string::npos;
+        const bool ok = dot != std::string::npos && dot > 0 && dot + 1 < name.size()
+            && name.find_first_not_of("0123456789.") == std::string::npos && name.find('.', dot + 1) == std::string::npos;
         if (!ok)
             fail(where, ": mpeg4.", name, ": not an FDP name of the form group.point (e.g. 8.3)");
         checkVertex(where, "mpeg4." + name, v, n);
@@ -174,7 +176,7 @@ void validateManifest(const Manifest& m, const std::string& where)
         if (!sampleNames.count(p.identity))
             fail(where, ": ", field, ".identity: '", p.identity, "' is not a sample name");
         checkName(where, field + ".name", p.name);
-        if (!poseNames.insert({p.identity, p.name}).second)
+        if (!poseNames.insert({ p.identity, p.name }).second)
             fail(where, ": ", field, ".name: duplicate pose '", p.name, "' of '", p.identity, "'");
         checkFile(where, field + ".file", p.file);
         if (!files.insert(p.file.lexically_normal()).second)
@@ -240,7 +242,7 @@ Manifest readManifest(const std::filesystem::path& path)
     } catch (const json::parse_error& e) {
         fail(where, ": not valid JSON: ", e.what());
     }
-    const Reader r{where};
+    const Reader r { where };
     r.object(doc, "(top level)");
 
     Manifest m;
@@ -268,14 +270,12 @@ Manifest readManifest(const std::filesystem::path& path)
         const std::string field = "components." + name;
         if (!range.is_array() || range.size() != 2)
             fail(where, ": ", field, ": expected [begin, end], found ", range.dump());
-        m.components.push_back({name, static_cast<int>(r.integer(range[0], field)),
-                                static_cast<int>(r.integer(range[1], field))});
+        m.components.push_back({ name, static_cast<int>(r.integer(range[0], field)), static_cast<int>(r.integer(range[1], field)) });
     }
     // Components are listed in index order so the vertex layout reads top to bottom.
-    std::sort(m.components.begin(), m.components.end(),
-              [](const Component& a, const Component& b) { return a.begin < b.begin; });
+    std::sort(m.components.begin(), m.components.end(), [](const Component& a, const Component& b) { return a.begin < b.begin; });
 
-    for (const char* key : {"landmarks", "mpeg4"}) {
+    for (const char* key : { "landmarks", "mpeg4" }) {
         auto& target = std::string(key) == "landmarks" ? m.landmarks : m.mpeg4;
         for (const auto& [name, v] : r.object(r.member(doc, key, ""), key).items())
             target[name] = static_cast<int>(r.integer(v, cat(key, ".", name)));
@@ -333,7 +333,7 @@ void writeManifest(const std::filesystem::path& path, const Manifest& m)
         out << "  \"vertex_count\": " << m.vertexCount << ",\n";
         json components = json::object();
         for (const Component& c : m.components)
-            components[c.name] = {c.begin, c.end};
+            components[c.name] = { c.begin, c.end };
         out << "  \"components\": " << components.dump() << ",\n";
         out << "  \"landmarks\": " << json(m.landmarks).dump() << ",\n";
         out << "  \"mpeg4\": " << json(m.mpeg4).dump() << ",\n";
@@ -348,19 +348,18 @@ void writeManifest(const std::filesystem::path& path, const Manifest& m)
         out << "  \"samples\": [";
         for (size_t i = 0; i < m.samples.size(); ++i) {
             const Sample& s = m.samples[i];
-            json item = {{"name", s.name}, {"file", s.file.generic_string()}, {"role", roleName(s.role)}};
+            json item = { { "name", s.name }, { "file", s.file.generic_string() }, { "role", roleName(s.role) } };
             out << (i ? ",\n    " : "\n    ") << item.dump();
         }
         out << "\n  ],\n  \"poses\": [";
         for (size_t i = 0; i < m.poses.size(); ++i) {
             const Pose& p = m.poses[i];
-            json item = {{"identity", p.identity}, {"name", p.name}, {"file", p.file.generic_string()}};
+            json item = { { "identity", p.identity }, { "name", p.name }, { "file", p.file.generic_string() } };
             out << (i ? ",\n    " : "\n    ") << item.dump();
         }
         out << "\n  ],\n  \"topology\": [";
         for (Eigen::Index f = 0; f < m.topology.rows(); ++f)
-            out << (f ? ",\n    [" : "\n    [") << m.topology(f, 0) << "," << m.topology(f, 1) << ","
-                << m.topology(f, 2) << "]";
+            out << (f ? ",\n    [" : "\n    [") << m.topology(f, 0) << "," << m.topology(f, 1) << "," << m.topology(f, 2) << "]";
         out << "\n  ]\n}\n";
     });
 }

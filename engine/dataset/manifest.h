@@ -53,16 +53,16 @@ struct Pose {
 };
 
 struct Manifest {
-    std::string units = "mm";   ///< "mm", "cm" or "m"
-    std::string up = "+y";      ///< one of +x -x +y -y +z -z
-    std::string forward = "+z"; ///< the direction the face looks; not parallel to `up`
-    int vertexCount = 0;        ///< #V of every mesh in the dataset
-    Triangles topology;         ///< #F by 3, shared by every mesh, counter-clockwise from outside
-    std::vector<Component> components;              ///< disjoint vertex ranges, "skin" required
-    std::map<std::string, int> landmarks;           ///< craniofacial name ("prn", "ex_l") -> vertex
-    std::map<std::string, int> mpeg4;               ///< FDP name ("8.3") -> vertex
+    std::string units = "mm";                         ///< "mm", "cm" or "m"
+    std::string up = "+y";                            ///< one of +x -x +y -y +z -z
+    std::string forward = "+z";                       ///< the direction the face looks; not parallel to `up`
+    int vertexCount = 0;                              ///< #V of every mesh in the dataset
+    Triangles topology;                               ///< #F by 3, shared by every mesh, counter-clockwise from outside
+    std::vector<Component> components;                ///< disjoint vertex ranges, "skin" required
+    std::map<std::string, int> landmarks;             ///< craniofacial name ("prn", "ex_l") -> vertex
+    std::map<std::string, int> mpeg4;                 ///< FDP name ("8.3") -> vertex
     std::map<std::string, std::vector<int>> contours; ///< name -> ordered vertex path (>= 2)
-    std::vector<int> excluded;                      ///< never contour candidates (thesis 4.3.3)
+    std::vector<int> excluded;                        ///< never contour candidates (thesis 4.3.3)
     std::vector<Sample> samples;
     std::vector<Pose> poses;
 

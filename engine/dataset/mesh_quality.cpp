@@ -25,8 +25,8 @@ Eigen::Vector3d normal(const Vertices& V, const Triangles& F, Eigen::Index f)
 }
 
 // Does segment p-q cross triangle (a, b, c)? Endpoints touching count as crossing.
-bool segmentHitsTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& a,
-                         const Eigen::Vector3d& b, const Eigen::Vector3d& c)
+bool segmentHitsTriangle(
+    const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c)
 {
     const Eigen::Vector3d dir = q - p, e1 = b - a, e2 = c - a;
     const Eigen::Vector3d h = dir.cross(e2);
@@ -49,12 +49,11 @@ bool segmentHitsTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, con
 
 } // namespace
 
-bool trianglesIntersect(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen::Vector3d& a2,
-                        const Eigen::Vector3d& b0, const Eigen::Vector3d& b1, const Eigen::Vector3d& b2)
+bool trianglesIntersect(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen::Vector3d& a2, const Eigen::Vector3d& b0,
+    const Eigen::Vector3d& b1, const Eigen::Vector3d& b2)
 {
-    return segmentHitsTriangle(a0, a1, b0, b1, b2) || segmentHitsTriangle(a1, a2, b0, b1, b2) ||
-           segmentHitsTriangle(a2, a0, b0, b1, b2) || segmentHitsTriangle(b0, b1, a0, a1, a2) ||
-           segmentHitsTriangle(b1, b2, a0, a1, a2) || segmentHitsTriangle(b2, b0, a0, a1, a2);
+    return segmentHitsTriangle(a0, a1, b0, b1, b2) || segmentHitsTriangle(a1, a2, b0, b1, b2) || segmentHitsTriangle(a2, a0, b0, b1, b2)
+        || segmentHitsTriangle(b0, b1, a0, a1, a2) || segmentHitsTriangle(b1, b2, a0, a1, a2) || segmentHitsTriangle(b2, b0, a0, a1, a2);
 }
 
 std::vector<int> degenerateTriangles(const Mesh& mesh, double minArea, double minAngleDeg)
@@ -62,7 +61,7 @@ std::vector<int> degenerateTriangles(const Mesh& mesh, double minArea, double mi
     std::vector<int> out;
     const double minSin = std::sin(minAngleDeg * M_PI / 180);
     for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-        const Eigen::Vector3d p[3] = {vertex(mesh.V, mesh.F(f, 0)), vertex(mesh.V, mesh.F(f, 1)), vertex(mesh.V, mesh.F(f, 2))};
+        const Eigen::Vector3d p[3] = { vertex(mesh.V, mesh.F(f, 0)), vertex(mesh.V, mesh.F(f, 1)), vertex(mesh.V, mesh.F(f, 2)) };
         const double twiceArea = (p[1] - p[0]).cross(p[2] - p[0]).norm();
         bool bad = twiceArea / 2 < minArea;
         // sin(angle at k) = 2 area / (|e1| |e2|)
@@ -89,8 +88,7 @@ std::vector<int> trianglesFacingCentre(const Mesh& mesh, const Eigen::Vector3d& 
 {
     std::vector<int> out;
     for (int f : triangles) {
-        const Eigen::Vector3d centroid =
-            (vertex(mesh.V, mesh.F(f, 0)) + vertex(mesh.V, mesh.F(f, 1)) + vertex(mesh.V, mesh.F(f, 2))) / 3;
+        const Eigen::Vector3d centroid = (vertex(mesh.V, mesh.F(f, 0)) + vertex(mesh.V, mesh.F(f, 1)) + vertex(mesh.V, mesh.F(f, 2))) / 3;
         if (normal(mesh.V, mesh.F, f).dot(centroid - centre) <= 0)
             out.push_back(f);
     }
@@ -133,12 +131,11 @@ std::vector<std::pair<int, int>> selfIntersections(const Mesh& mesh)
     std::vector<Eigen::AlignedBox3d> boxes(static_cast<size_t>(nf));
     auto cellOf = [&](const Eigen::Vector3d& x) {
         return Eigen::Vector3i(static_cast<int>(std::floor((x.x() - origin.x()) / cell)),
-                               static_cast<int>(std::floor((x.y() - origin.y()) / cell)),
-                               static_cast<int>(std::floor((x.z() - origin.z()) / cell)));
+            static_cast<int>(std::floor((x.y() - origin.y()) / cell)), static_cast<int>(std::floor((x.z() - origin.z()) / cell)));
     };
     auto key = [](const Eigen::Vector3i& c) {
-        return (static_cast<std::int64_t>(c.x()) * 73856093) ^ (static_cast<std::int64_t>(c.y()) * 19349663) ^
-               (static_cast<std::int64_t>(c.z()) * 83492791);
+        return (static_cast<std::int64_t>(c.x()) * 73856093) ^ (static_cast<std::int64_t>(c.y()) * 19349663)
+            ^ (static_cast<std::int64_t>(c.z()) * 83492791);
     };
     std::unordered_map<std::int64_t, std::vector<int>> grid;
     for (Eigen::Index f = 0; f < nf; ++f) {
@@ -149,7 +146,7 @@ std::vector<std::pair<int, int>> selfIntersections(const Mesh& mesh)
         for (int x = lo.x(); x <= hi.x(); ++x)
             for (int y = lo.y(); y <= hi.y(); ++y)
                 for (int z = lo.z(); z <= hi.z(); ++z)
-                    grid[key({x, y, z})].push_back(static_cast<int>(f));
+                    grid[key({ x, y, z })].push_back(static_cast<int>(f));
     }
     for (Eigen::Index i = 0; i < nf; ++i) {
         const Eigen::AlignedBox3d& bi = boxes[static_cast<size_t>(i)];
@@ -176,9 +173,8 @@ std::vector<std::pair<int, int>> selfIntersections(const Mesh& mesh)
                                 shared = shared || mesh.F(i, a) == mesh.F(j, b);
                         if (shared)
                             continue;
-                        if (trianglesIntersect(vertex(mesh.V, mesh.F(i, 0)), vertex(mesh.V, mesh.F(i, 1)),
-                                               vertex(mesh.V, mesh.F(i, 2)), vertex(mesh.V, mesh.F(j, 0)),
-                                               vertex(mesh.V, mesh.F(j, 1)), vertex(mesh.V, mesh.F(j, 2))))
+                        if (trianglesIntersect(vertex(mesh.V, mesh.F(i, 0)), vertex(mesh.V, mesh.F(i, 1)), vertex(mesh.V, mesh.F(i, 2)),
+                                vertex(mesh.V, mesh.F(j, 0)), vertex(mesh.V, mesh.F(j, 1)), vertex(mesh.V, mesh.F(j, 2))))
                             out.emplace_back(static_cast<int>(i), j);
                     }
                 }

@@ -32,7 +32,7 @@ std::vector<std::pair<int, int>> selfIntersections(const Mesh& mesh);
 
 /// True if triangles (a0, a1, a2) and (b0, b1, b2) intersect (an edge of one crosses the
 /// other). Coplanar overlaps are not reported.
-bool trianglesIntersect(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen::Vector3d& a2,
-                        const Eigen::Vector3d& b0, const Eigen::Vector3d& b1, const Eigen::Vector3d& b2);
+bool trianglesIntersect(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen::Vector3d& a2, const Eigen::Vector3d& b0,
+    const Eigen::Vector3d& b1, const Eigen::Vector3d& b2);
 
 } // namespace facesketch::dataset

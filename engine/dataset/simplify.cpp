@@ -29,17 +29,17 @@ std::vector<int> lockedVertices(const Manifest& m)
         locked.insert(v);
     for (const auto& [name, path] : m.contours)
         locked.insert(path.begin(), path.end());
-    return {locked.begin(), locked.end()};
+    return { locked.begin(), locked.end() };
 }
 
 // Runs meshopt_simplify aiming at `targetIndices`; returns the kept index buffer.
-std::vector<unsigned> runSimplifier(const std::vector<float>& positions, size_t vertexCount,
-                                    const std::vector<unsigned>& indices, size_t targetIndices)
+std::vector<unsigned> runSimplifier(
+    const std::vector<float>& positions, size_t vertexCount, const std::vector<unsigned>& indices, size_t targetIndices)
 {
     std::vector<unsigned> out(indices.size());
     // target_error 1 (the whole extent): the triangle budget, not the error, decides where to stop.
-    const size_t count = meshopt_simplify(out.data(), indices.data(), indices.size(), positions.data(), vertexCount,
-                                          3 * sizeof(float), targetIndices, 1.0f, 0, nullptr);
+    const size_t count = meshopt_simplify(
+        out.data(), indices.data(), indices.size(), positions.data(), vertexCount, 3 * sizeof(float), targetIndices, 1.0f, 0, nullptr);
     out.resize(count);
     return out;
 }
@@ -138,16 +138,14 @@ Manifest simplifyManifest(const Manifest& m, const Simplification& s)
         return out;
     };
     // First new index whose old index is >= `old`.
-    auto lower = [&](int old) {
-        return static_cast<int>(std::lower_bound(s.kept.begin(), s.kept.end(), old) - s.kept.begin());
-    };
+    auto lower = [&](int old) { return static_cast<int>(std::lower_bound(s.kept.begin(), s.kept.end(), old) - s.kept.begin()); };
 
     Manifest out = m;
     out.vertexCount = static_cast<int>(s.kept.size());
     out.topology = s.topology;
     out.components.clear();
     for (const Component& c : m.components) {
-        const Component n{c.name, lower(c.begin), lower(c.end)};
+        const Component n { c.name, lower(c.begin), lower(c.end) };
         if (n.size() > 0)
             out.components.push_back(n);
         else if (c.name == "skin")
@@ -190,7 +188,7 @@ int simplifyDataset(const fs::path& input, const fs::path& output, int targetVer
     writeDataset(output, out, [&](const fs::path& tmp) {
         auto copy = [&](const fs::path& file) {
             fs::create_directories((tmp / file).parent_path());
-            writePly(tmp / file, Mesh{keepVertices(loadMesh(in, file).V, s), s.topology});
+            writePly(tmp / file, Mesh { keepVertices(loadMesh(in, file).V, s), s.topology });
         };
         for (const Sample& sample : m.samples)
             copy(sample.file);

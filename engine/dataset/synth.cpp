@@ -6,8 +6,8 @@
 #include "io/mesh_io.h"
 
 #include <atomic>
-#include <mutex>
 #include <cmath>
+#include <mutex>
 #include <thread>
 
 namespace facesketch::dataset {
@@ -53,12 +53,12 @@ Manifest synthManifest(const FaceTopology& topology, const SynthOptions& options
     const std::vector<Role> roles = synthRoles(options.identities);
     for (int i = 0; i < options.identities; ++i) {
         const std::string name = sampleName(i);
-        m.samples.push_back({name, fs::path("faces") / (name + ".ply"), roles[static_cast<size_t>(i)]});
+        m.samples.push_back({ name, fs::path("faces") / (name + ".ply"), roles[static_cast<size_t>(i)] });
     }
     for (int i = 0; i < posedCount(options); ++i)
         for (const PoseRecipe& r : poseRecipes()) {
             const std::string name = sampleName(i);
-            m.poses.push_back({name, r.name, fs::path("poses") / name / (r.name + ".ply")});
+            m.poses.push_back({ name, r.name, fs::path("poses") / name / (r.name + ".ply") });
         }
     return m;
 }
@@ -80,7 +80,7 @@ void writeSynthDataset(const fs::path& folder, const SynthOptions& options, cons
 
         // Jobs are identities; each worker writes its own files, so the order of completion
         // does not affect any byte written.
-        std::atomic<int> next{0}, done{0};
+        std::atomic<int> next { 0 }, done { 0 };
         std::exception_ptr error;
         std::mutex errorMutex;
         auto work = [&](bool reporter) {
@@ -111,8 +111,7 @@ void writeSynthDataset(const fs::path& folder, const SynthOptions& options, cons
             }
         };
         const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-        const int threads = std::max(1, std::min(options.threads > 0 ? options.threads : static_cast<int>(hardware),
-                                                 options.identities));
+        const int threads = std::max(1, std::min(options.threads > 0 ? options.threads : static_cast<int>(hardware), options.identities));
         std::vector<std::thread> pool;
         for (int t = 1; t < threads; ++t)
             pool.emplace_back(work, false);

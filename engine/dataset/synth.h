@@ -14,12 +14,12 @@
 namespace facesketch::dataset {
 
 struct SynthOptions {
-    int identities = 250;            ///< thesis 3.1: 182 train + 48 contour (+ 20 test)
+    int identities = 250; ///< thesis 3.1: 182 train + 48 contour (+ 20 test)
     Resolution resolution = Resolution::Low;
     std::uint64_t seed = 1;
-    bool poses = false;              ///< write the 36 poses of each posed identity
-    int poseIdentities = -1;         ///< how many identities get poses (-1: all)
-    int threads = 0;                 ///< 0: one per hardware thread
+    bool poses = false;      ///< write the 36 poses of each posed identity
+    int poseIdentities = -1; ///< how many identities get poses (-1: all)
+    int threads = 0;         ///< 0: one per hardware thread
 };
 
 /// Roles of `identities` samples in order: the thesis' 182 : 48 : 20 split scaled to the count
@@ -33,7 +33,7 @@ Manifest synthManifest(const FaceTopology& topology, const SynthOptions& options
 /// Generates every mesh and writes the dataset folder atomically (dataset.h writeDataset).
 /// `progress`, if set, is called with (meshes done, meshes total) from the calling thread.
 /// Throws Error for bad options or if the folder cannot be written.
-void writeSynthDataset(const std::filesystem::path& folder, const SynthOptions& options,
-                       const std::function<void(int, int)>& progress = {});
+void writeSynthDataset(
+    const std::filesystem::path& folder, const SynthOptions& options, const std::function<void(int, int)>& progress = {});
 
 } // namespace facesketch::dataset

@@ -16,9 +16,12 @@ namespace facesketch::evaluation {
 const char* mappingName(ContourMapping mapping)
 {
     switch (mapping) {
-    case ContourMapping::KnownVertex: return "known-vertex";
-    case ContourMapping::NearestCandidate: return "nearest-candidate";
-    default: return "2d";
+    case ContourMapping::KnownVertex:
+        return "known-vertex";
+    case ContourMapping::NearestCandidate:
+        return "nearest-candidate";
+    default:
+        return "2d";
     }
 }
 
@@ -28,7 +31,11 @@ namespace {
 class ScreenIndex {
 public:
     ScreenIndex(const std::vector<Candidate>& cloud, int width, int height, int cell = 8)
-        : cloud_(cloud), cell_(cell), columns_(width / cell + 1), rows_(height / cell + 1), buckets_(static_cast<size_t>(columns_) * rows_)
+        : cloud_(cloud)
+        , cell_(cell)
+        , columns_(width / cell + 1)
+        , rows_(height / cell + 1)
+        , buckets_(static_cast<size_t>(columns_) * rows_)
     {
         for (size_t i = 0; i < cloud.size(); ++i)
             buckets_[bucket(cloud[i].screen[0], cloud[i].screen[1])].push_back(static_cast<int>(i));
@@ -87,7 +94,7 @@ std::pair<double, double> errors(const Eigen::VectorXd& a, const Eigen::VectorXd
         e[v] = (a.segment<3>(3 * v) - b.segment<3>(3 * v)).norm();
     if (perVertex)
         *perVertex = e;
-    return {e.mean(), e.maxCoeff()};
+    return { e.mean(), e.maxCoeff() };
 }
 
 } // namespace
@@ -119,7 +126,7 @@ std::vector<ContourEvalResult> evaluateContours(gpu::Device& device, const Conto
     auto checkMesh = [&](const Mesh& m, const std::string& what) {
         if (m.V.rows() != nv || m.F.rows() != model.triangles.rows())
             fail("evaluateContours: ", what, " has ", m.V.rows(), " vertices and ", m.F.rows(), " triangles; the model has ", nv, " and ",
-                 model.triangles.rows());
+                model.triangles.rows());
     };
     if (data.candidateFaces.empty() || data.testFaces.empty() || data.testNames.size() != data.testFaces.size())
         fail("evaluateContours: need candidate faces and named test faces");
@@ -164,10 +171,10 @@ std::vector<ContourEvalResult> evaluateContours(gpu::Device& device, const Conto
         for (size_t f = 0; f < data.testFaces.size(); ++f) {
             const Mesh& face = data.testFaces[f];
             const Eigen::VectorXd truth = flatten(face);
-            const std::vector<Candidate> points = contourCandidates({face}, {testCurvature[f]}, data.flags, camera, params);
+            const std::vector<Candidate> points = contourCandidates({ face }, { testCurvature[f] }, data.flags, camera, params);
             const auto [meanFaceMean, meanFaceMax] = errors(model.meanFace, truth, nullptr);
 
-            for (ContourMapping mapping : {ContourMapping::KnownVertex, ContourMapping::NearestCandidate, ContourMapping::Projected2D}) {
+            for (ContourMapping mapping : { ContourMapping::KnownVertex, ContourMapping::NearestCandidate, ContourMapping::Projected2D }) {
                 // `own`: candidates of the current reconstruction (empty at first).
                 auto rebuild = [&](const std::vector<Candidate>& own) {
                     const ScreenIndex ownIndex(own, options.imageSize, options.imageSize);
@@ -204,7 +211,7 @@ std::vector<ContourEvalResult> evaluateContours(gpu::Device& device, const Conto
                     // mapped to the wrong vertex) and solve again: `trim` times.
                     std::vector<std::pair<Eigen::Index, Eigen::Vector3d>> kept;
                     for (const auto& [vertex, sum] : observed)
-                        kept.push_back({vertex, sum.first / sum.second});
+                        kept.push_back({ vertex, sum.first / sum.second });
                     auto solve = [&] {
                         stats::Observations obs;
                         for (const auto& [vertex, xyz] : kept) {
@@ -243,7 +250,8 @@ std::vector<ContourEvalResult> evaluateContours(gpu::Device& device, const Conto
                     current.V.resize(nv, 3);
                     for (Eigen::Index v = 0; v < nv; ++v)
                         current.V.row(v) = r.face.segment<3>(3 * v).transpose();
-                    const std::vector<Candidate> own = contourCandidates({current}, {estimateCurvature(current)}, data.flags, camera, params);
+                    const std::vector<Candidate> own
+                        = contourCandidates({ current }, { estimateCurvature(current) }, data.flags, camera, params);
                     std::tie(r, observedCount) = rebuild(own);
                 }
                 ContourEvalResult result;

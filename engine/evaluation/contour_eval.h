@@ -31,16 +31,16 @@ const char* mappingName(ContourMapping mapping);
 /// Everything on the model's topology (vertex v of the model is vertex v of every mesh here).
 struct ContourEvalData {
     const stats::FaceModel* model = nullptr;
-    std::vector<std::uint32_t> flags;     ///< VertexFlag per model vertex (labelled, excluded)
-    std::vector<Mesh> candidateFaces;     ///< the faces whose contours form the cloud (thesis: 230)
+    std::vector<std::uint32_t> flags; ///< VertexFlag per model vertex (labelled, excluded)
+    std::vector<Mesh> candidateFaces; ///< the faces whose contours form the cloud (thesis: 230)
     std::vector<std::string> testNames;
-    std::vector<Mesh> testFaces;          ///< held-out faces, scored
+    std::vector<Mesh> testFaces; ///< held-out faces, scored
 };
 
 struct ContourEvalOptions {
-    std::vector<std::pair<std::string, ViewAngles>> views = {{"front", {0, 0}}, {"profile", {90, 0}}, {"34", {45, 0}}};
+    std::vector<std::pair<std::string, ViewAngles>> views = { { "front", { 0, 0 } }, { "profile", { 90, 0 } }, { "34", { 45, 0 } } };
     int imageSize = 1024;
-    double suggestiveThreshold = ContourParams{}.suggestiveThreshold;
+    double suggestiveThreshold = ContourParams {}.suggestiveThreshold;
     stats::ReconstructOptions reconstruct;
     int refinements = 3; ///< re-mappings against the reconstruction's own contours (0: the thesis' method)
     /// Outlier trimming after each solve of the candidate mappings: observations whose residual
@@ -54,8 +54,8 @@ struct ContourEvalOptions {
 struct ContourEvalResult {
     std::string face, view;
     ContourMapping mapping = ContourMapping::KnownVertex;
-    int points = 0;            ///< contour points of the face in the view
-    int observedVertices = 0;  ///< distinct vertices they observed
+    int points = 0;                           ///< contour points of the face in the view
+    int observedVertices = 0;                 ///< distinct vertices they observed
     double meanError = 0, maxError = 0;       ///< reconstruction, mm
     double meanFaceMean = 0, meanFaceMax = 0; ///< the mean face, mm
     Eigen::VectorXd vertexError;              ///< #V reconstruction errors, mm (for error renders)

@@ -8,8 +8,8 @@
 namespace facesketch {
 
 namespace {
-void checkSize(const std::vector<float>& data, std::size_t meshCount, std::size_t vertexCount, std::size_t floatsPerVertex,
-               const char* what)
+void checkSize(
+    const std::vector<float>& data, std::size_t meshCount, std::size_t vertexCount, std::size_t floatsPerVertex, const char* what)
 {
     if (data.size() != meshCount * vertexCount * floatsPerVertex)
         fail(what, ": ", data.size(), " floats, expected ", meshCount, " meshes x ", vertexCount, " vertices x ", floatsPerVertex);
@@ -66,8 +66,7 @@ void uploadWedges(gpu::Device& device, const Triangles& F, Eigen::Index vertexCo
 
 WedgeTexels createWedgeTexels(gpu::Device& device, const gpu::Buffer& offsets, const gpu::Buffer& corners)
 {
-    return {gpu::createTexelView(device, offsets, VK_FORMAT_R32_UINT),
-            gpu::createTexelView(device, corners, VK_FORMAT_R32G32_UINT)};
+    return { gpu::createTexelView(device, offsets, VK_FORMAT_R32_UINT), gpu::createTexelView(device, corners, VK_FORMAT_R32G32_UINT) };
 }
 
 void destroyWedgeTexels(gpu::Device& device, WedgeTexels& texels)

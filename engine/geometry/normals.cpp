@@ -37,9 +37,9 @@ std::vector<float> vertexNormalsBatch(const std::vector<float>& positions, const
             const float* a = p + 3 * F(t, 0);
             const float* b = p + 3 * F(t, 1);
             const float* c = p + 3 * F(t, 2);
-            const double e1[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
-            const double e2[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
-            const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+            const double e1[3] = { double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2] };
+            const double e2[3] = { double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2] };
+            const double n[3] = { e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0] };
             for (int k = 0; k < 3; ++k)
                 for (int j = 0; j < 3; ++j)
                     sum[3 * F(t, k) + j] += n[j];

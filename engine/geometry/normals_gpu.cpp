@@ -19,7 +19,8 @@ struct alignas(16) NormalsConstants {
 } // namespace
 
 GpuNormals::GpuNormals(gpu::Device& device, const Triangles& F, Eigen::Index vertexCount)
-    : device_(device), vertexCount_(vertexCount)
+    : device_(device)
+    , vertexCount_(vertexCount)
 {
     if (vertexCount <= 0 || F.rows() == 0)
         fail("GpuNormals: need at least one vertex and one triangle (got ", vertexCount, " and ", F.rows(), ")");
@@ -74,13 +75,13 @@ double GpuNormals::run()
 {
     if (meshCount_ == 0)
         fail("GpuNormals::run: no positions set");
-    const NormalsConstants constants{static_cast<std::uint32_t>(vertexCount_), meshCount_, NORMALS_WEIGHT_AREA};
+    const NormalsConstants constants { static_cast<std::uint32_t>(vertexCount_), meshCount_, NORMALS_WEIGHT_AREA };
     gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
         gpu::timerStart(cmd, timer_);
         // Meshes along x, vertices along y, one (mesh, vertex) per invocation.
         const auto rows = batchRows(constants.vertexCount, program_.localSize[1]);
         gpu::dispatch(device_, cmd, program_, constants.meshCount, rows, 1,
-                      {&positionTexels_, &wedgeTexels_.offsets, &wedgeTexels_.corners, &normals_}, constants);
+            { &positionTexels_, &wedgeTexels_.offsets, &wedgeTexels_.corners, &normals_ }, constants);
         gpu::hostReadBarrier(cmd);
         gpu::timerEnd(cmd, timer_);
     });
@@ -94,8 +95,7 @@ std::vector<float> GpuNormals::normals()
     return fromBatchLayout(batch, meshCount_, static_cast<size_t>(vertexCount_));
 }
 
-std::vector<float> vertexNormalsGpu(gpu::Device& device, const std::vector<float>& positions, const Triangles& F,
-                                    Eigen::Index vertexCount)
+std::vector<float> vertexNormalsGpu(gpu::Device& device, const std::vector<float>& positions, const Triangles& F, Eigen::Index vertexCount)
 {
     GpuNormals kernel(device, F, vertexCount);
     kernel.setPositions(positions);

@@ -9,9 +9,9 @@
 //   std::vector<float> n = normals.normals();      // same layout as positions
 
 #include "core/mesh.h"
+#include "geometry/mesh_batch.h"
 #include "gpu/buffers.h"
 #include "gpu/compute.h"
-#include "geometry/mesh_batch.h"
 #include "gpu/timer.h"
 
 #include <vector>
@@ -46,7 +46,6 @@ private:
 };
 
 /// One-off convenience: normals of a batch, with a temporary GpuNormals.
-std::vector<float> vertexNormalsGpu(gpu::Device& device, const std::vector<float>& positions, const Triangles& F,
-                                    Eigen::Index vertexCount);
+std::vector<float> vertexNormalsGpu(gpu::Device& device, const std::vector<float>& positions, const Triangles& F, Eigen::Index vertexCount);
 
 } // namespace facesketch

@@ -15,11 +15,11 @@ Mesh makeIcosphere(double radius, int subdivisions)
     if (!(radius > 0) || subdivisions < 0 || subdivisions > 8)
         fail("makeIcosphere: radius ", radius, " must be positive and subdivisions ", subdivisions, " in [0, 8]");
     const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-    std::vector<Eigen::RowVector3d> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                                         {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-                                         {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+    std::vector<Eigen::RowVector3d> v = { { -1, t, 0 }, { 1, t, 0 }, { -1, -t, 0 }, { 1, -t, 0 }, { 0, -1, t }, { 0, 1, t }, { 0, -1, -t },
+        { 0, 1, -t }, { t, 0, -1 }, { t, 0, 1 }, { -t, 0, -1 }, { -t, 0, 1 } };
+    std::vector<std::array<int, 3>> f = { { 0, 11, 5 }, { 0, 5, 1 }, { 0, 1, 7 }, { 0, 7, 10 }, { 0, 10, 11 }, { 1, 5, 9 }, { 5, 11, 4 },
+        { 11, 10, 2 }, { 10, 7, 6 }, { 7, 1, 8 }, { 3, 9, 4 }, { 3, 4, 2 }, { 3, 2, 6 }, { 3, 6, 8 }, { 3, 8, 9 }, { 4, 9, 5 },
+        { 2, 4, 11 }, { 6, 2, 10 }, { 8, 6, 7 }, { 9, 8, 1 } };
     for (auto& p : v)
         p.normalize();
     for (int s = 0; s < subdivisions; ++s) {
@@ -35,10 +35,10 @@ Mesh makeIcosphere(double radius, int subdivisions)
         next.reserve(f.size() * 4);
         for (const auto& tri : f) {
             const int ab = mid(tri[0], tri[1]), bc = mid(tri[1], tri[2]), ca = mid(tri[2], tri[0]);
-            next.push_back({tri[0], ab, ca});
-            next.push_back({tri[1], bc, ab});
-            next.push_back({tri[2], ca, bc});
-            next.push_back({ab, bc, ca});
+            next.push_back({ tri[0], ab, ca });
+            next.push_back({ tri[1], bc, ab });
+            next.push_back({ tri[2], ca, bc });
+            next.push_back({ ab, bc, ca });
         }
         f = std::move(next);
     }

@@ -19,7 +19,7 @@ Wedges buildWedges(const Triangles& F, Eigen::Index vertexCount)
     for (Eigen::Index t = 0; t < F.rows(); ++t)
         for (int c = 0; c < 3; ++c) {
             const auto v = F(t, c);
-            w.corners[fill[v]++] = {static_cast<std::uint32_t>(F(t, (c + 1) % 3)), static_cast<std::uint32_t>(F(t, (c + 2) % 3))};
+            w.corners[fill[v]++] = { static_cast<std::uint32_t>(F(t, (c + 1) % 3)), static_cast<std::uint32_t>(F(t, (c + 2) % 3)) };
         }
     return w;
 }

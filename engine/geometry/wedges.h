@@ -13,8 +13,8 @@
 namespace facesketch {
 
 struct Wedges {
-    std::vector<std::uint32_t> offsets;                  ///< #V + 1
-    std::vector<std::array<std::uint32_t, 2>> corners;   ///< 3 #F, grouped by vertex
+    std::vector<std::uint32_t> offsets;                ///< #V + 1
+    std::vector<std::array<std::uint32_t, 2>> corners; ///< 3 #F, grouped by vertex
 };
 
 /// F: #F by 3 triangle indices in [0, vertexCount) (validated by the caller: core/mesh.h).

@@ -6,8 +6,8 @@
 
 namespace facesketch::gpu {
 
-std::uint32_t chooseMemoryType(const Device& device, std::uint32_t typeBits, VkMemoryPropertyFlags required,
-                               VkMemoryPropertyFlags preferred)
+std::uint32_t chooseMemoryType(
+    const Device& device, std::uint32_t typeBits, VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred)
 {
     std::int64_t fallback = -1;
     for (std::uint32_t i = 0; i < device.memory.memoryTypeCount; ++i) {
@@ -64,7 +64,7 @@ void destroyBuffer(Device& device, Buffer& b)
         vkUnmapMemory(device.device, b.memory);
     vkDestroyBuffer(device.device, b.buffer, nullptr);
     vkFreeMemory(device.device, b.memory, nullptr);
-    b = Buffer{};
+    b = Buffer {};
 }
 
 void uploadBuffer(Device& device, Buffer& buffer, const void* data, std::size_t size, VkDeviceSize offset)
@@ -80,7 +80,7 @@ void uploadBuffer(Device& device, Buffer& buffer, const void* data, std::size_t 
     Buffer staging = createBuffer(device, size, 0, MemoryUse::Readback);
     std::memcpy(staging.mapped, data, size);
     submitAndWait(device, [&](VkCommandBuffer cmd) {
-        VkBufferCopy region{0, offset, size};
+        VkBufferCopy region { 0, offset, size };
         vkCmdCopyBuffer(cmd, staging.buffer, buffer.buffer, 1, &region);
     });
     destroyBuffer(device, staging);
@@ -99,7 +99,7 @@ void readbackBuffer(Device& device, const Buffer& buffer, void* data, std::size_
     }
     Buffer staging = createBuffer(device, size, 0, MemoryUse::Readback);
     submitAndWait(device, [&](VkCommandBuffer cmd) {
-        VkBufferCopy region{offset, 0, size};
+        VkBufferCopy region { offset, 0, size };
         vkCmdCopyBuffer(cmd, buffer.buffer, staging.buffer, 1, &region);
     });
     std::memcpy(data, staging.mapped, size);
@@ -128,7 +128,7 @@ TexelView createTexelView(Device& device, const Buffer& buffer, VkFormat format)
     const VkDeviceSize elements = buffer.size / texelBytes;
     if (elements > device.properties.limits.maxTexelBufferElements)
         fail("createTexelView: ", elements, " texels exceed this device's maxTexelBufferElements (",
-             device.properties.limits.maxTexelBufferElements, ")");
+            device.properties.limits.maxTexelBufferElements, ")");
     auto info = makeStruct<VkBufferViewCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO);
     info.buffer = buffer.buffer;
     info.format = format;
@@ -144,11 +144,11 @@ TexelView createTexelView(Device& device, const Buffer& buffer, VkFormat format)
 void destroyTexelView(Device& device, TexelView& view)
 {
     vkDestroyBufferView(device.device, view.view, nullptr);
-    view = TexelView{};
+    view = TexelView {};
 }
 
 Image createImage(Device& device, std::uint32_t width, std::uint32_t height, VkFormat format, VkImageUsageFlags usage,
-                  VkImageAspectFlags aspect, VkSampleCountFlagBits samples)
+    VkImageAspectFlags aspect, VkSampleCountFlagBits samples)
 {
     Image image;
     image.format = format;
@@ -157,7 +157,7 @@ Image createImage(Device& device, std::uint32_t width, std::uint32_t height, VkF
     auto info = makeStruct<VkImageCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO);
     info.imageType = VK_IMAGE_TYPE_2D;
     info.format = format;
-    info.extent = {width, height, 1};
+    info.extent = { width, height, 1 };
     info.mipLevels = 1;
     info.arrayLayers = 1;
     info.samples = samples;
@@ -181,7 +181,7 @@ Image createImage(Device& device, std::uint32_t width, std::uint32_t height, VkF
     viewInfo.image = image.image;
     viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
     viewInfo.format = format;
-    viewInfo.subresourceRange = {aspect, 0, 1, 0, 1};
+    viewInfo.subresourceRange = { aspect, 0, 1, 0, 1 };
     VK_CHECK(vkCreateImageView(device.device, &viewInfo, nullptr, &image.view));
     return image;
 }
@@ -191,7 +191,7 @@ void destroyImage(Device& device, Image& image)
     vkDestroyImageView(device.device, image.view, nullptr);
     vkDestroyImage(device.device, image.image, nullptr);
     vkFreeMemory(device.device, image.memory, nullptr);
-    image = Image{};
+    image = Image {};
 }
 
 } // namespace facesketch::gpu

@@ -60,12 +60,12 @@ struct Image {
 
 /// A 2D device-local image with one mip level and a view of `aspect`.
 Image createImage(Device& device, std::uint32_t width, std::uint32_t height, VkFormat format, VkImageUsageFlags usage,
-                  VkImageAspectFlags aspect, VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
+    VkImageAspectFlags aspect, VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
 void destroyImage(Device& device, Image& image);
 
 /// Index of a memory type allowed by `typeBits` with all `required` flags, preferring one that
 /// also has `preferred`; throws Error when none exists.
-std::uint32_t chooseMemoryType(const Device& device, std::uint32_t typeBits, VkMemoryPropertyFlags required,
-                               VkMemoryPropertyFlags preferred);
+std::uint32_t chooseMemoryType(
+    const Device& device, std::uint32_t typeBits, VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred);
 
 } // namespace facesketch::gpu

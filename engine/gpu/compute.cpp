@@ -44,7 +44,7 @@ std::vector<std::uint32_t> readSpirvFile(const std::filesystem::path& path)
     std::memcpy(words.data(), bytes.data(), bytes.size());
     try {
         std::uint32_t localSize[3];
-        readLocalSize({words.data(), bytes.size()}, localSize);
+        readLocalSize({ words.data(), bytes.size() }, localSize);
     } catch (const Error& e) {
         fail(path.string(), ": ", e.what());
     }
@@ -71,7 +71,7 @@ VkDescriptorType bindingType(const ComputeProgram& p, std::uint32_t binding)
 } // namespace
 
 ComputeProgram createComputeProgram(Device& device, ShaderCode code, std::uint32_t bufferCount, std::uint32_t pushConstantSize,
-                                    std::uint32_t uniformMask, std::uint32_t texelMask)
+    std::uint32_t uniformMask, std::uint32_t texelMask)
 {
     if (uniformMask & texelMask)
         fail("createComputeProgram: bindings ", uniformMask & texelMask, " are marked both uniform and texel");
@@ -85,14 +85,14 @@ ComputeProgram createComputeProgram(Device& device, ShaderCode code, std::uint32
 
     std::vector<VkDescriptorSetLayoutBinding> bindings(bufferCount);
     for (std::uint32_t i = 0; i < bufferCount; ++i)
-        bindings[i] = {i, bindingType(p, i), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+        bindings[i] = { i, bindingType(p, i), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr };
     auto setInfo = makeStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
     setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
     setInfo.bindingCount = bufferCount;
     setInfo.pBindings = bindings.data();
     VK_CHECK(vkCreateDescriptorSetLayout(device.device, &setInfo, nullptr, &p.setLayout));
 
-    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantSize};
+    VkPushConstantRange range { VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantSize };
     auto layoutInfo = makeStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
     layoutInfo.setLayoutCount = 1;
     layoutInfo.pSetLayouts = &p.setLayout;
@@ -116,13 +116,13 @@ void destroyComputeProgram(Device& device, ComputeProgram& p)
     vkDestroyPipelineLayout(device.device, p.layout, nullptr);
     vkDestroyDescriptorSetLayout(device.device, p.setLayout, nullptr);
     vkDestroyShaderModule(device.device, p.module, nullptr);
-    p = ComputeProgram{};
+    p = ComputeProgram {};
 }
 
 namespace {
 // Binds `program`, pushes its descriptors (one per binding) and constants.
 void bindProgram(Device& device, VkCommandBuffer cmd, const ComputeProgram& program, std::initializer_list<Binding> buffers,
-                 const void* constants, std::size_t constantsSize)
+    const void* constants, std::size_t constantsSize)
 {
     assert(buffers.size() == program.bufferCount);
     assert(constantsSize == program.pushConstantSize);
@@ -149,22 +149,22 @@ void bindProgram(Device& device, VkCommandBuffer cmd, const ComputeProgram& prog
             views[i] = b.texel->view;
             w.pTexelBufferView = &views[i];
         } else {
-            infos[i] = {b.buffer->buffer, 0, VK_WHOLE_SIZE};
+            infos[i] = { b.buffer->buffer, 0, VK_WHOLE_SIZE };
             w.pBufferInfo = &infos[i];
         }
         writes.push_back(w);
         ++i;
     }
     if (!writes.empty())
-        device.pushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, program.layout, 0, static_cast<std::uint32_t>(writes.size()),
-                                 writes.data());
+        device.pushDescriptorSet(
+            cmd, VK_PIPELINE_BIND_POINT_COMPUTE, program.layout, 0, static_cast<std::uint32_t>(writes.size()), writes.data());
     if (constantsSize)
         vkCmdPushConstants(cmd, program.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, static_cast<std::uint32_t>(constantsSize), constants);
 }
 } // namespace
 
 void dispatchRaw(Device& device, VkCommandBuffer cmd, const ComputeProgram& program, std::uint32_t countX, std::uint32_t countY,
-                 std::uint32_t countZ, std::initializer_list<Binding> buffers, const void* constants, std::size_t constantsSize)
+    std::uint32_t countZ, std::initializer_list<Binding> buffers, const void* constants, std::size_t constantsSize)
 {
     bindProgram(device, cmd, program, buffers, constants, constantsSize);
     auto groups = [](std::uint32_t count, std::uint32_t local) { return (count + local - 1) / local; };
@@ -172,14 +172,14 @@ void dispatchRaw(Device& device, VkCommandBuffer cmd, const ComputeProgram& prog
 }
 
 void dispatchIndirect(Device& device, VkCommandBuffer cmd, const ComputeProgram& program, const Buffer& args, VkDeviceSize offset,
-                      std::initializer_list<Binding> buffers, const void* constants, std::size_t constantsSize)
+    std::initializer_list<Binding> buffers, const void* constants, std::size_t constantsSize)
 {
     bindProgram(device, cmd, program, buffers, constants, constantsSize);
     vkCmdDispatchIndirect(cmd, args.buffer, offset);
 }
 
-static void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst,
-                          VkAccessFlags dstAccess)
+static void memoryBarrier(
+    VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst, VkAccessFlags dstAccess)
 {
     auto barrier = makeStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
     barrier.srcAccessMask = srcAccess;
@@ -190,28 +190,27 @@ static void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAcces
 void computeBarrier(VkCommandBuffer cmd)
 {
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT);
 }
 
 void computeToIndirectBarrier(VkCommandBuffer cmd)
 {
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
-                      VK_ACCESS_TRANSFER_READ_BIT);
+        VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+        VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT);
 }
 
 void transferToComputeBarrier(VkCommandBuffer cmd)
 {
     memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 }
 
 void hostReadBarrier(VkCommandBuffer cmd)
 {
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+        VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
 }
 
 } // namespace facesketch::gpu

@@ -27,10 +27,9 @@ struct ShaderCode {
     std::size_t sizeBytes = 0;
 };
 
-template <std::size_t N>
-ShaderCode shaderCode(const std::uint32_t (&words)[N])
+template <std::size_t N> ShaderCode shaderCode(const std::uint32_t (&words)[N])
 {
-    return {words, sizeof(words)};
+    return { words, sizeof(words) };
 }
 
 /// A SPIR-V module read from a file (glslangValidator -V output), for kernel variants measured
@@ -48,7 +47,7 @@ struct ComputeProgram {
     VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
     VkPipelineLayout layout = VK_NULL_HANDLE;
     VkPipeline pipeline = VK_NULL_HANDLE;
-    std::uint32_t localSize[3] = {1, 1, 1};
+    std::uint32_t localSize[3] = { 1, 1, 1 };
     std::uint32_t bufferCount = 0;
     std::uint32_t pushConstantSize = 0;
     std::uint32_t uniformMask = 0;
@@ -58,14 +57,20 @@ struct ComputeProgram {
 /// What one binding of a dispatch refers to: a whole buffer (storage or uniform) or a texel
 /// view, as the program's masks say. Converts from either pointer, so `{&a, &view, &b}` works.
 struct Binding {
-    Binding(const Buffer* b) : buffer(b) {}
-    Binding(const TexelView* t) : texel(t) {}
+    Binding(const Buffer* b)
+        : buffer(b)
+    {
+    }
+    Binding(const TexelView* t)
+        : texel(t)
+    {
+    }
     const Buffer* buffer = nullptr;
     const TexelView* texel = nullptr;
 };
 
 ComputeProgram createComputeProgram(Device& device, ShaderCode code, std::uint32_t bufferCount, std::uint32_t pushConstantSize,
-                                    std::uint32_t uniformMask = 0, std::uint32_t texelMask = 0);
+    std::uint32_t uniformMask = 0, std::uint32_t texelMask = 0);
 void destroyComputeProgram(Device& device, ComputeProgram& program);
 
 /// Binds `program` and `buffers` (binding i = buffers[i]: a whole buffer, or a texel view where
@@ -73,18 +78,18 @@ void destroyComputeProgram(Device& device, ComputeProgram& program);
 /// and dispatches enough workgroups to cover countX x countY x countZ invocations. The shader
 /// must bounds-check. Put the barrier that consumes the result at the call site.
 void dispatchRaw(Device& device, VkCommandBuffer cmd, const ComputeProgram& program, std::uint32_t countX, std::uint32_t countY,
-                 std::uint32_t countZ, std::initializer_list<Binding> buffers, const void* constants, std::size_t constantsSize);
+    std::uint32_t countZ, std::initializer_list<Binding> buffers, const void* constants, std::size_t constantsSize);
 
 /// As dispatchRaw, with the workgroup counts read by the device from `args` at `offset`
 /// (VkDispatchIndirectCommand: three uints), written earlier by a shader: for work whose size
 /// only the GPU knows. `args` needs VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT; put
 /// computeToIndirectBarrier between the writes and this call.
 void dispatchIndirect(Device& device, VkCommandBuffer cmd, const ComputeProgram& program, const Buffer& args, VkDeviceSize offset,
-                      std::initializer_list<Binding> buffers, const void* constants, std::size_t constantsSize);
+    std::initializer_list<Binding> buffers, const void* constants, std::size_t constantsSize);
 
 template <typename Constants>
 void dispatch(Device& device, VkCommandBuffer cmd, const ComputeProgram& program, std::uint32_t countX, std::uint32_t countY,
-              std::uint32_t countZ, std::initializer_list<Binding> buffers, const Constants& constants)
+    std::uint32_t countZ, std::initializer_list<Binding> buffers, const Constants& constants)
 {
     assert(program.pushConstantSize == sizeof(constants));
     dispatchRaw(device, cmd, program, countX, countY, countZ, buffers, &constants, sizeof(constants));

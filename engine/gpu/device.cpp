@@ -17,11 +17,10 @@ namespace facesketch::gpu {
 
 namespace {
 
-std::atomic<std::uint64_t> validationMessages{0};
+std::atomic<std::uint64_t> validationMessages { 0 };
 
-VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                              VkDebugUtilsMessageTypeFlagsEXT, const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                              void*)
+VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
+    const VkDebugUtilsMessengerCallbackDataEXT* data, void*)
 {
     const bool error = severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
     validationMessages.fetch_add(1);
@@ -50,18 +49,23 @@ bool hasInstanceExtension(const char* name)
     vkEnumerateInstanceExtensionProperties(nullptr, &count, nullptr);
     std::vector<VkExtensionProperties> extensions(count);
     vkEnumerateInstanceExtensionProperties(nullptr, &count, extensions.data());
-    return std::any_of(extensions.begin(), extensions.end(),
-                       [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+    return std::any_of(
+        extensions.begin(), extensions.end(), [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
 }
 
 int deviceRank(const VkPhysicalDeviceProperties& p)
 {
     switch (p.deviceType) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
-    default: return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+        return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+        return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+        return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+        return 1;
+    default:
+        return 0;
     }
 }
 
@@ -96,7 +100,8 @@ VkPhysicalDevice choosePhysicalDevice(VkInstance instance)
     }
     if (usable.empty())
         fail("no Vulkan 1.2 device with a graphics+compute queue (is mesa-vulkan-drivers installed? "
-             "tools/setup-debian.sh installs it); devices seen: [", names, "]");
+             "tools/setup-debian.sh installs it); devices seen: [",
+            names, "]");
 
     if (const char* want = std::getenv("FACESKETCH_DEVICE"); want && *want) {
         char* end = nullptr;
@@ -146,7 +151,9 @@ void pinVulkanLibraries()
 const char* vkResultName(VkResult result)
 {
     switch (result) {
-#define FACESKETCH_RESULT(name) case name: return #name
+#define FACESKETCH_RESULT(name)                                                                                                            \
+    case name:                                                                                                                             \
+        return #name
         FACESKETCH_RESULT(VK_SUCCESS);
         FACESKETCH_RESULT(VK_NOT_READY);
         FACESKETCH_RESULT(VK_TIMEOUT);
@@ -163,7 +170,8 @@ const char* vkResultName(VkResult result)
         FACESKETCH_RESULT(VK_ERROR_TOO_MANY_OBJECTS);
         FACESKETCH_RESULT(VK_ERROR_FORMAT_NOT_SUPPORTED);
 #undef FACESKETCH_RESULT
-    default: return "VkResult(unknown)";
+    default:
+        return "VkResult(unknown)";
     }
 }
 
@@ -191,7 +199,7 @@ Device createDevice(const DeviceOptions& options)
     d.validation = wantValidation && hasLayer(layerName) && hasInstanceExtension(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     if (wantValidation && !d.validation && (options.requireValidation || envFlag("FACESKETCH_VALIDATION")))
         fail("Vulkan validation requested but ", layerName,
-             " or VK_EXT_debug_utils is missing (install vulkan-validationlayers: tools/setup-debian.sh)");
+            " or VK_EXT_debug_utils is missing (install vulkan-validationlayers: tools/setup-debian.sh)");
 
     auto app = makeStruct<VkApplicationInfo>(VK_STRUCTURE_TYPE_APPLICATION_INFO);
     app.pApplicationName = "FaceSketch";
@@ -201,8 +209,8 @@ Device createDevice(const DeviceOptions& options)
     std::vector<const char*> layers, extensions;
     auto messengerInfo = makeStruct<VkDebugUtilsMessengerCreateInfoEXT>(VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT);
     messengerInfo.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-    messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                                VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT
+        | VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
     messengerInfo.pfnUserCallback = onDebugMessage;
 
     auto instanceInfo = makeStruct<VkInstanceCreateInfo>(VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO);
@@ -220,7 +228,8 @@ Device createDevice(const DeviceOptions& options)
         fail("vkCreateInstance failed with ", vkResultName(r), " (is a Vulkan driver installed? tools/setup-debian.sh)");
 
     if (d.validation) {
-        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(d.instance, "vkCreateDebugUtilsMessengerEXT"));
+        auto create
+            = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(d.instance, "vkCreateDebugUtilsMessengerEXT"));
         VK_CHECK(create(d.instance, &messengerInfo, nullptr, &d.messenger));
     }
 
@@ -243,7 +252,7 @@ Device createDevice(const DeviceOptions& options)
 
     VkPhysicalDeviceFeatures available;
     vkGetPhysicalDeviceFeatures(d.physical, &available);
-    VkPhysicalDeviceFeatures enabled{};
+    VkPhysicalDeviceFeatures enabled {};
     enabled.largePoints = available.largePoints;
     enabled.wideLines = available.wideLines;
     enabled.fillModeNonSolid = available.fillModeNonSolid;
@@ -261,7 +270,7 @@ Device createDevice(const DeviceOptions& options)
     vkEnumerateDeviceExtensionProperties(d.physical, nullptr, &extensionCount, deviceExtensions.data());
     const char* pushDescriptor = VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME;
     if (std::none_of(deviceExtensions.begin(), deviceExtensions.end(),
-                     [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, pushDescriptor) == 0; })) {
+            [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, pushDescriptor) == 0; })) {
         const std::string name = d.name;
         destroyDevice(d);
         fail("Vulkan device ", name, " lacks ", pushDescriptor);
@@ -294,12 +303,13 @@ void destroyDevice(Device& d)
     if (d.device)
         vkDestroyDevice(d.device, nullptr);
     if (d.messenger) {
-        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(d.instance, "vkDestroyDebugUtilsMessengerEXT"));
+        auto destroy
+            = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(d.instance, "vkDestroyDebugUtilsMessengerEXT"));
         destroy(d.instance, d.messenger, nullptr);
     }
     if (d.instance)
         vkDestroyInstance(d.instance, nullptr);
-    d = Device{};
+    d = Device {};
 }
 
 VkCommandBuffer beginOneShot(Device& d)

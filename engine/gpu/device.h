@@ -16,19 +16,18 @@ namespace facesketch::gpu {
 
 /// Aborts with the failing call and its VkResult; for calls that cannot fail in a correct
 /// program. Calls with legitimate failures (device lost, out of memory) are checked by hand.
-#define VK_CHECK(call)                                                                         \
-    do {                                                                                       \
-        VkResult vkCheckResult_ = (call);                                                      \
-        if (vkCheckResult_ != VK_SUCCESS)                                                      \
-            ::facesketch::gpu::vkFailed(#call, vkCheckResult_, __FILE__, __LINE__);            \
+#define VK_CHECK(call)                                                                                                                     \
+    do {                                                                                                                                   \
+        VkResult vkCheckResult_ = (call);                                                                                                  \
+        if (vkCheckResult_ != VK_SUCCESS)                                                                                                  \
+            ::facesketch::gpu::vkFailed(#call, vkCheckResult_, __FILE__, __LINE__);                                                        \
     } while (0)
 
 /// A zero-initialised Vulkan struct with its sType set: `auto info = makeStruct<VkBufferCreateInfo>(
 /// VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);` (brace-initialising only sType trips -Wextra).
-template <typename T>
-T makeStruct(VkStructureType type)
+template <typename T> T makeStruct(VkStructureType type)
 {
-    T value{};
+    T value {};
     value.sType = type;
     return value;
 }
@@ -37,7 +36,7 @@ T makeStruct(VkStructureType type)
 const char* vkResultName(VkResult result);
 
 struct DeviceOptions {
-    bool validation = false; ///< also on when FACESKETCH_VALIDATION=1 or in a debug build
+    bool validation = false;        ///< also on when FACESKETCH_VALIDATION=1 or in a debug build
     bool requireValidation = false; ///< throw Error if the validation layer is missing
 };
 
@@ -46,18 +45,18 @@ struct Device {
     VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
     VkPhysicalDevice physical = VK_NULL_HANDLE;
     VkDevice device = VK_NULL_HANDLE;
-    VkQueue queue = VK_NULL_HANDLE;       ///< one queue that does graphics, compute and transfer
+    VkQueue queue = VK_NULL_HANDLE; ///< one queue that does graphics, compute and transfer
     std::uint32_t queueFamily = 0;
     VkCommandPool commandPool = VK_NULL_HANDLE; ///< for one-shot command buffers on `queue`
-    VkPhysicalDeviceProperties properties{};
-    VkPhysicalDeviceMemoryProperties memory{};
-    bool validation = false;    ///< the validation layer is active
-    bool timestamps = false;    ///< the queue supports timestamp queries
+    VkPhysicalDeviceProperties properties {};
+    VkPhysicalDeviceMemoryProperties memory {};
+    bool validation = false; ///< the validation layer is active
+    bool timestamps = false; ///< the queue supports timestamp queries
     bool largePoints = false;
     /// vkCmdPushDescriptorSetKHR (VK_KHR_push_descriptor is required: every desktop driver and
     /// lavapipe have it, and it spares per-dispatch descriptor pools).
     PFN_vkCmdPushDescriptorSetKHR pushDescriptorSet = nullptr;
-    std::string name;           ///< e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+    std::string name; ///< e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
 };
 
 /// Creates instance, debug messenger (with validation), device and queue. Throws Error when no
@@ -69,7 +68,10 @@ void destroyDevice(Device& device);
 /// uses one device from start to end (commands, benchmarks, the test fixture).
 class ScopedDevice {
 public:
-    explicit ScopedDevice(const DeviceOptions& options = {}) : device_(createDevice(options)) {}
+    explicit ScopedDevice(const DeviceOptions& options = {})
+        : device_(createDevice(options))
+    {
+    }
     ~ScopedDevice() { destroyDevice(device_); }
     ScopedDevice(const ScopedDevice&) = delete;
     ScopedDevice& operator=(const ScopedDevice&) = delete;
@@ -84,15 +86,13 @@ private:
 std::uint64_t validationMessageCount();
 
 /// Records commands through `record` into a one-shot command buffer, submits it and waits.
-template <typename F>
-void submitAndWait(Device& device, F&& record);
+template <typename F> void submitAndWait(Device& device, F&& record);
 
 // Implementation detail of submitAndWait.
 VkCommandBuffer beginOneShot(Device& device);
 void endOneShotAndWait(Device& device, VkCommandBuffer cmd);
 
-template <typename F>
-void submitAndWait(Device& device, F&& record)
+template <typename F> void submitAndWait(Device& device, F&& record)
 {
     VkCommandBuffer cmd = beginOneShot(device);
     record(cmd);

@@ -22,7 +22,7 @@ void destroyGpuTimer(Device& device, GpuTimer& t)
 {
     if (t.pool)
         vkDestroyQueryPool(device.device, t.pool, nullptr);
-    t = GpuTimer{};
+    t = GpuTimer {};
 }
 
 void timerStart(VkCommandBuffer cmd, const GpuTimer& t)
@@ -44,8 +44,8 @@ double timerMilliseconds(Device& device, const GpuTimer& t)
     if (!t.available)
         return -1;
     std::uint64_t ticks[2];
-    VK_CHECK(vkGetQueryPoolResults(device.device, t.pool, 0, 2, sizeof(ticks), ticks, sizeof(std::uint64_t),
-                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    VK_CHECK(vkGetQueryPoolResults(
+        device.device, t.pool, 0, 2, sizeof(ticks), ticks, sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
     return static_cast<double>(ticks[1] - ticks[0]) * t.nanosecondsPerTick * 1e-6;
 }
 

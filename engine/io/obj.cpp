@@ -107,8 +107,8 @@ Mesh readObj(const std::filesystem::path& path)
         size_t offset = 0;
         for (const unsigned char n : shape.mesh.num_face_vertices) {
             for (unsigned k = 1; k + 1 < n; ++k)
-                triangles.push_back({shape.mesh.indices[offset].vertex_index, shape.mesh.indices[offset + k].vertex_index,
-                                     shape.mesh.indices[offset + k + 1].vertex_index});
+                triangles.push_back({ shape.mesh.indices[offset].vertex_index, shape.mesh.indices[offset + k].vertex_index,
+                    shape.mesh.indices[offset + k + 1].vertex_index });
             offset += n;
         }
     }

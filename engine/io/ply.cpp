@@ -23,25 +23,42 @@ enum class Scalar { None, Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Fl
 
 Scalar parseScalar(const std::string& type)
 {
-    if (type == "char" || type == "int8") return Scalar::Int8;
-    if (type == "uchar" || type == "uint8") return Scalar::UInt8;
-    if (type == "short" || type == "int16") return Scalar::Int16;
-    if (type == "ushort" || type == "uint16") return Scalar::UInt16;
-    if (type == "int" || type == "int32") return Scalar::Int32;
-    if (type == "uint" || type == "uint32") return Scalar::UInt32;
-    if (type == "float" || type == "float32") return Scalar::Float32;
-    if (type == "double" || type == "float64") return Scalar::Float64;
+    if (type == "char" || type == "int8")
+        return Scalar::Int8;
+    if (type == "uchar" || type == "uint8")
+        return Scalar::UInt8;
+    if (type == "short" || type == "int16")
+        return Scalar::Int16;
+    if (type == "ushort" || type == "uint16")
+        return Scalar::UInt16;
+    if (type == "int" || type == "int32")
+        return Scalar::Int32;
+    if (type == "uint" || type == "uint32")
+        return Scalar::UInt32;
+    if (type == "float" || type == "float32")
+        return Scalar::Float32;
+    if (type == "double" || type == "float64")
+        return Scalar::Float64;
     return Scalar::None;
 }
 
 int scalarSize(Scalar s)
 {
     switch (s) {
-    case Scalar::Int8: case Scalar::UInt8: return 1;
-    case Scalar::Int16: case Scalar::UInt16: return 2;
-    case Scalar::Int32: case Scalar::UInt32: case Scalar::Float32: return 4;
-    case Scalar::Float64: return 8;
-    default: return 0;
+    case Scalar::Int8:
+    case Scalar::UInt8:
+        return 1;
+    case Scalar::Int16:
+    case Scalar::UInt16:
+        return 2;
+    case Scalar::Int32:
+    case Scalar::UInt32:
+    case Scalar::Float32:
+        return 4;
+    case Scalar::Float64:
+        return 8;
+    default:
+        return 0;
     }
 }
 
@@ -62,15 +79,16 @@ struct Element {
 // made loading a 230-face dataset take seconds).
 class BinaryReader {
 public:
-    BinaryReader(std::istream& in, Format format, const std::string& file) : swap_(needSwap(format)), file_(file)
+    BinaryReader(std::istream& in, Format format, const std::string& file)
+        : swap_(needSwap(format))
+        , file_(file)
     {
         if (format == Format::Ascii)
             return;
         body_.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
     }
 
-    template <typename Context>
-    double read(Scalar type, const Context& context)
+    template <typename Context> double read(Scalar type, const Context& context)
     {
         const int n = scalarSize(type);
         if (position_ + n > body_.size())
@@ -85,22 +103,27 @@ public:
             return static_cast<double>(value);
         };
         switch (type) {
-        case Scalar::Int8: return as(std::int8_t{});
-        case Scalar::UInt8: return as(std::uint8_t{});
-        case Scalar::Int16: return as(std::int16_t{});
-        case Scalar::UInt16: return as(std::uint16_t{});
-        case Scalar::Int32: return as(std::int32_t{});
-        case Scalar::UInt32: return as(std::uint32_t{});
-        case Scalar::Float32: return as(float{});
-        default: return as(double{});
+        case Scalar::Int8:
+            return as(std::int8_t {});
+        case Scalar::UInt8:
+            return as(std::uint8_t {});
+        case Scalar::Int16:
+            return as(std::int16_t {});
+        case Scalar::UInt16:
+            return as(std::uint16_t {});
+        case Scalar::Int32:
+            return as(std::int32_t {});
+        case Scalar::UInt32:
+            return as(std::uint32_t {});
+        case Scalar::Float32:
+            return as(float {});
+        default:
+            return as(double {});
         }
     }
 
 private:
-    static bool needSwap(Format f)
-    {
-        return (f == Format::BinaryBig) == (std::endian::native == std::endian::little);
-    }
+    static bool needSwap(Format f) { return (f == Format::BinaryBig) == (std::endian::native == std::endian::little); }
     bool swap_;
     const std::string& file_;
     std::vector<char> body_;
@@ -146,10 +169,14 @@ Mesh readPly(const std::filesystem::path& path)
         if (keyword == "format") {
             std::string name, version;
             words >> name >> version;
-            if (name == "ascii") format = Format::Ascii;
-            else if (name == "binary_little_endian") format = Format::BinaryLittle;
-            else if (name == "binary_big_endian") format = Format::BinaryBig;
-            else fail(where(), "unknown format '", name, "'");
+            if (name == "ascii")
+                format = Format::Ascii;
+            else if (name == "binary_little_endian")
+                format = Format::BinaryLittle;
+            else if (name == "binary_big_endian")
+                format = Format::BinaryBig;
+            else
+                fail(where(), "unknown format '", name, "'");
             haveFormat = true;
         } else if (keyword == "element") {
             Element e;
@@ -185,7 +212,7 @@ Mesh readPly(const std::filesystem::path& path)
 
     const Element* vertexElement = nullptr;
     const Element* faceElement = nullptr;
-    int xyz[3] = {-1, -1, -1};
+    int xyz[3] = { -1, -1, -1 };
     int indexProperty = -1;
     for (const Element& e : elements) {
         if (e.name == "vertex") {
@@ -273,8 +300,8 @@ Mesh readPly(const std::filesystem::path& path)
                     if (index < 0 || index >= vertexCount)
                         fail(where(), "face ", k, " has vertex index ", index, " outside [0, ", vertexCount, ")");
                 for (size_t j = 1; j + 1 < indices.size(); ++j)
-                    triangles.push_back({static_cast<std::int32_t>(indices[0]), static_cast<std::int32_t>(indices[j]),
-                                         static_cast<std::int32_t>(indices[j + 1])});
+                    triangles.push_back({ static_cast<std::int32_t>(indices[0]), static_cast<std::int32_t>(indices[j]),
+                        static_cast<std::int32_t>(indices[j + 1]) });
             }
             if (format == Format::Ascii && words >> token)
                 fail(where(), e.name, " ", k, " has more values than its ", e.properties.size(), " properties");
@@ -300,7 +327,8 @@ void writePly(const std::filesystem::path& path, const Mesh& mesh, PlyEncoding e
         if (ascii) {
             out.precision(9);
             for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
-                out << static_cast<float>(mesh.V(v, 0)) << ' ' << static_cast<float>(mesh.V(v, 1)) << ' ' << static_cast<float>(mesh.V(v, 2)) << '\n';
+                out << static_cast<float>(mesh.V(v, 0)) << ' ' << static_cast<float>(mesh.V(v, 1)) << ' '
+                    << static_cast<float>(mesh.V(v, 2)) << '\n';
             for (Eigen::Index t = 0; t < mesh.F.rows(); ++t)
                 out << "3 " << mesh.F(t, 0) << ' ' << mesh.F(t, 1) << ' ' << mesh.F(t, 2) << '\n';
             return;

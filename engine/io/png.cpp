@@ -20,7 +20,8 @@ void writePng(const std::filesystem::path& path, const Image& image)
     if (image.width <= 0 || image.height <= 0 || image.pixels.size() != static_cast<size_t>(image.width) * image.height * 4)
         fail(path.string(), ": image ", image.width, "x", image.height, " with ", image.pixels.size(), " bytes is not RGBA");
     writeFileAtomically(path, [&](std::ostream& out) {
-        auto sink = [](void* context, void* data, int size) { static_cast<std::ostream*>(context)->write(static_cast<const char*>(data), size); };
+        auto sink
+            = [](void* context, void* data, int size) { static_cast<std::ostream*>(context)->write(static_cast<const char*>(data), size); };
         if (!stbi_write_png_to_func(sink, &out, image.width, image.height, 4, image.pixels.data(), image.width * 4))
             fail(path.string(), ": PNG encoding failed");
     });
@@ -32,7 +33,7 @@ Image readPng(const std::filesystem::path& path)
     unsigned char* data = stbi_load(path.string().c_str(), &w, &h, &channels, 4);
     if (!data)
         fail(path.string(), ": cannot read PNG: ", stbi_failure_reason());
-    Image image{w, h, std::vector<std::uint8_t>(data, data + static_cast<size_t>(w) * h * 4)};
+    Image image { w, h, std::vector<std::uint8_t>(data, data + static_cast<size_t>(w) * h * 4) };
     stbi_image_free(data);
     return image;
 }

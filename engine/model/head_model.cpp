@@ -41,8 +41,7 @@ int skinLandmark(const dataset::Manifest& manifest, const std::string& name)
     return it->second - skin.begin;
 }
 
-stats::FaceModel trainHeadModel(const dataset::Dataset& dataset, const HeadModelOptions& options,
-                                const stats::TrainProgress& progress)
+stats::FaceModel trainHeadModel(const dataset::Dataset& dataset, const HeadModelOptions& options, const stats::TrainProgress& progress)
 {
     const dataset::Manifest& m = dataset.manifest;
     const std::string where = dataset.folder.string();
@@ -97,11 +96,10 @@ void requireModelFits(const stats::FaceModel& model, const dataset::Manifest& ma
     const dataset::Component& skin = skinOf(manifest);
     if (model.vertexCount() != skin.size())
         fail(where, ": the model has ", model.vertexCount(), " skin vertices, the dataset ", skin.size(),
-             "; train a model on this dataset's resolution");
-    if (model.head.vertexCount != 0 &&
-        (model.head.vertexCount != manifest.vertexCount || model.head.skinBegin != skin.begin))
-        fail(where, ": the model's head has ", model.head.vertexCount, " vertices with the skin from ",
-             model.head.skinBegin, ", the dataset ", manifest.vertexCount, " from ", skin.begin);
+            "; train a model on this dataset's resolution");
+    if (model.head.vertexCount != 0 && (model.head.vertexCount != manifest.vertexCount || model.head.skinBegin != skin.begin))
+        fail(where, ": the model's head has ", model.head.vertexCount, " vertices with the skin from ", model.head.skinBegin,
+            ", the dataset ", manifest.vertexCount, " from ", skin.begin);
 }
 
 } // namespace facesketch::model

@@ -32,8 +32,8 @@ int skinLandmark(const dataset::Manifest& manifest, const std::string& name);
 /// rigid part per non-skin component, plus one part "unassigned" for vertices in no component.
 /// Throws Error for a dataset without "prn", with fewer than 4 train samples, or whose units
 /// are not mm.
-stats::FaceModel trainHeadModel(const dataset::Dataset& dataset, const HeadModelOptions& options = {},
-                                const stats::TrainProgress& progress = {});
+stats::FaceModel trainHeadModel(
+    const dataset::Dataset& dataset, const HeadModelOptions& options = {}, const stats::TrainProgress& progress = {});
 
 /// Throws Error naming `where` if the model was not trained on this dataset's topology (vertex
 /// count, skin range).

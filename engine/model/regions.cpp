@@ -18,11 +18,12 @@ struct Seeds {
 const std::map<std::string, Seeds>& regionSeeds()
 {
     static const std::map<std::string, Seeds> seeds = {
-        {"nose", {{"prn", "al*", "sbal*", "sn", "cs1"}, {"nostril*"}}},
-        {"mouth", {{"ls", "li", "sto", "ch*", "cph*"}, {"lip_upper_outer", "lip_lower_outer", "lip_upper_inner", "lip_lower_inner"}}},
-        {"chin", {{"pg", "gn", "sl"}, {}}},
-        {"eyes", {{"en*", "ex*", "ps*", "pi*"}, {"eye_socket*"}}},
-        {"brows", {{"os*", "mf*", "g"}, {"eyebrow*"}}},
+        { "nose", { { "prn", "al*", "sbal*", "sn", "cs1" }, { "nostril*" } } },
+        { "mouth",
+            { { "ls", "li", "sto", "ch*", "cph*" }, { "lip_upper_outer", "lip_lower_outer", "lip_upper_inner", "lip_lower_inner" } } },
+        { "chin", { { "pg", "gn", "sl" }, {} } },
+        { "eyes", { { "en*", "ex*", "ps*", "pi*" }, { "eye_socket*" } } },
+        { "brows", { { "os*", "mf*", "g" }, { "eyebrow*" } } },
     };
     return seeds;
 }
@@ -31,20 +32,19 @@ std::vector<std::string> expand(const std::string& name)
 {
     if (!name.empty() && name.back() == '*') {
         const std::string stem = name.substr(0, name.size() - 1);
-        return {stem + "_l", stem + "_r"};
+        return { stem + "_l", stem + "_r" };
     }
-    return {name};
+    return { name };
 }
 
 } // namespace
 
 std::vector<std::string> featureRegionNames()
 {
-    return {"nose", "mouth", "chin", "eyes", "brows", "mouth_chin", "eyes_brows"};
+    return { "nose", "mouth", "chin", "eyes", "brows", "mouth_chin", "eyes_brows" };
 }
 
-std::vector<int> featureRegion(const dataset::Manifest& manifest, const stats::FaceModel& model,
-                               const std::string& name, double radius)
+std::vector<int> featureRegion(const dataset::Manifest& manifest, const stats::FaceModel& model, const std::string& name, double radius)
 {
     const Eigen::Index S = model.vertexCount();
     if (name.rfind("segment:", 0) == 0) {
@@ -64,11 +64,11 @@ std::vector<int> featureRegion(const dataset::Manifest& manifest, const stats::F
                 out.push_back(static_cast<int>(v));
         return out;
     }
-    std::vector<std::string> parts = {name};
+    std::vector<std::string> parts = { name };
     if (name == "mouth_chin")
-        parts = {"mouth", "chin"};
+        parts = { "mouth", "chin" };
     else if (name == "eyes_brows")
-        parts = {"eyes", "brows"};
+        parts = { "eyes", "brows" };
     const dataset::Component* skin = manifest.component("skin");
     if (!skin || skin->size() != S)
         fail("region ", name, ": the dataset's skin does not match the model's ", S, " vertices");

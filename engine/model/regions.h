@@ -26,7 +26,7 @@ std::vector<std::string> featureRegionNames();
 
 /// The region's skin vertices in ascending order. Throws Error naming the region for an
 /// unknown name, a segment out of range, or a region with no landmark in the manifest.
-std::vector<int> featureRegion(const dataset::Manifest& manifest, const stats::FaceModel& model,
-                               const std::string& name, double radius = 10.0);
+std::vector<int> featureRegion(
+    const dataset::Manifest& manifest, const stats::FaceModel& model, const std::string& name, double radius = 10.0);
 
 } // namespace facesketch::model

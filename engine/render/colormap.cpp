@@ -7,7 +7,7 @@ namespace facesketch {
 
 glm::vec4 blueToRed(double t)
 {
-    static const glm::vec3 stops[5] = {{0, 0, 1}, {0, 1, 1}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}};
+    static const glm::vec3 stops[5] = { { 0, 0, 1 }, { 0, 1, 1 }, { 0, 1, 0 }, { 1, 1, 0 }, { 1, 0, 0 } };
     t = std::isfinite(t) ? std::clamp(t, 0.0, 1.0) : 0.0;
     const double x = t * 4.0;
     const int i = std::min(static_cast<int>(x), 3);

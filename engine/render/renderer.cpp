@@ -55,14 +55,17 @@ struct Renderer::Impl {
     VkFramebuffer framebuffer = VK_NULL_HANDLE;
     VkShaderModule vert = VK_NULL_HANDLE, frag = VK_NULL_HANDLE;
     VkPipelineLayout layout = VK_NULL_HANDLE;
-    std::array<VkPipeline, TopologyCount> pipelines{};
+    std::array<VkPipeline, TopologyCount> pipelines {};
     gpu::Buffer readback;
 
     std::vector<DrawVertex> vertices;
     std::vector<std::uint32_t> indices;
     std::vector<DrawItem> items;
 
-    Impl(gpu::Device& d, int w, int h, int s) : device(d), width(w), height(h)
+    Impl(gpu::Device& d, int w, int h, int s)
+        : device(d)
+        , width(w)
+        , height(h)
     {
         if (w <= 0 || h <= 0 || w > 16384 || h > 16384)
             fail("Renderer: image size ", w, "x", h, " must be within 1..16384");
@@ -99,10 +102,11 @@ struct Renderer::Impl {
         const auto w = static_cast<std::uint32_t>(width), h = static_cast<std::uint32_t>(height);
         const VkImageUsageFlags colorUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | (msaa() ? 0 : VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
         color = gpu::createImage(device, w, h, colorFormat, colorUsage, VK_IMAGE_ASPECT_COLOR_BIT, samples);
-        depth = gpu::createImage(device, w, h, depthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT, samples);
+        depth
+            = gpu::createImage(device, w, h, depthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT, samples);
         if (msaa())
             resolve = gpu::createImage(device, w, h, colorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                                       VK_IMAGE_ASPECT_COLOR_BIT);
+                VK_IMAGE_ASPECT_COLOR_BIT);
 
         VkAttachmentDescription attachments[3] = {};
         attachments[0].format = colorFormat;
@@ -123,10 +127,10 @@ struct Renderer::Impl {
         attachments[2].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
         attachments[2].finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
 
-        VkAttachmentReference colorRef{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-        VkAttachmentReference depthRef{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-        VkAttachmentReference resolveRef{2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-        VkSubpassDescription subpass{};
+        VkAttachmentReference colorRef { 0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL };
+        VkAttachmentReference depthRef { 1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL };
+        VkAttachmentReference resolveRef { 2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL };
+        VkSubpassDescription subpass {};
         subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
         subpass.colorAttachmentCount = 1;
         subpass.pColorAttachments = &colorRef;
@@ -134,7 +138,7 @@ struct Renderer::Impl {
         subpass.pResolveAttachments = msaa() ? &resolveRef : nullptr;
 
         // The copy to the readback buffer waits for the attachment writes to finish.
-        VkSubpassDependency dependency{};
+        VkSubpassDependency dependency {};
         dependency.srcSubpass = 0;
         dependency.dstSubpass = VK_SUBPASS_EXTERNAL;
         dependency.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
@@ -151,7 +155,7 @@ struct Renderer::Impl {
         info.pDependencies = &dependency;
         VK_CHECK(vkCreateRenderPass(device.device, &info, nullptr, &renderPass));
 
-        VkImageView views[3] = {color.view, depth.view, msaa() ? resolve.view : VK_NULL_HANDLE};
+        VkImageView views[3] = { color.view, depth.view, msaa() ? resolve.view : VK_NULL_HANDLE };
         auto fb = gpu::makeStruct<VkFramebufferCreateInfo>(VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO);
         fb.renderPass = renderPass;
         fb.attachmentCount = msaa() ? 3 : 2;
@@ -166,15 +170,15 @@ struct Renderer::Impl {
     {
         vert = gpu::createShaderModule(device, gpu::shaderCode(mesh_vert));
         frag = gpu::createShaderModule(device, gpu::shaderCode(mesh_frag));
-        VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DrawConstants)};
+        VkPushConstantRange range { VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DrawConstants) };
         auto layoutInfo = gpu::makeStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
         layoutInfo.pushConstantRangeCount = 1;
         layoutInfo.pPushConstantRanges = &range;
         VK_CHECK(vkCreatePipelineLayout(device.device, &layoutInfo, nullptr, &layout));
 
-        VkPipelineShaderStageCreateInfo stages[2] = {
-            gpu::makeStruct<VkPipelineShaderStageCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO),
-            gpu::makeStruct<VkPipelineShaderStageCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO)};
+        VkPipelineShaderStageCreateInfo stages[2]
+            = { gpu::makeStruct<VkPipelineShaderStageCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO),
+                  gpu::makeStruct<VkPipelineShaderStageCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO) };
         stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
         stages[0].module = vert;
         stages[0].pName = "main";
@@ -182,11 +186,10 @@ struct Renderer::Impl {
         stages[1].module = frag;
         stages[1].pName = "main";
 
-        VkVertexInputBindingDescription binding{0, sizeof(DrawVertex), VK_VERTEX_INPUT_RATE_VERTEX};
-        VkVertexInputAttributeDescription attributes[3] = {
-            {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(DrawVertex, position)},
-            {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(DrawVertex, normal)},
-            {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(DrawVertex, color)}};
+        VkVertexInputBindingDescription binding { 0, sizeof(DrawVertex), VK_VERTEX_INPUT_RATE_VERTEX };
+        VkVertexInputAttributeDescription attributes[3] = { { 0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(DrawVertex, position) },
+            { 1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(DrawVertex, normal) },
+            { 2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(DrawVertex, color) } };
         auto vertexInput = gpu::makeStruct<VkPipelineVertexInputStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO);
         vertexInput.vertexBindingDescriptionCount = 1;
         vertexInput.pVertexBindingDescriptions = &binding;
@@ -194,8 +197,8 @@ struct Renderer::Impl {
         vertexInput.pVertexAttributeDescriptions = attributes;
 
         // Negative height: +y up in clip space comes out as row 0 at the top of the image.
-        VkViewport viewport{0, float(height), float(width), -float(height), 0, 1};
-        VkRect2D scissor{{0, 0}, {std::uint32_t(width), std::uint32_t(height)}};
+        VkViewport viewport { 0, float(height), float(width), -float(height), 0, 1 };
+        VkRect2D scissor { { 0, 0 }, { std::uint32_t(width), std::uint32_t(height) } };
         auto viewportState = gpu::makeStruct<VkPipelineViewportStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO);
         viewportState.viewportCount = 1;
         viewportState.pViewports = &viewport;
@@ -213,12 +216,13 @@ struct Renderer::Impl {
         auto multisample = gpu::makeStruct<VkPipelineMultisampleStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO);
         multisample.rasterizationSamples = samples;
 
-        auto depthState = gpu::makeStruct<VkPipelineDepthStencilStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO);
+        auto depthState
+            = gpu::makeStruct<VkPipelineDepthStencilStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO);
         depthState.depthTestEnable = VK_TRUE;
         depthState.depthWriteEnable = VK_TRUE;
         depthState.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
 
-        VkPipelineColorBlendAttachmentState blendAttachment{};
+        VkPipelineColorBlendAttachmentState blendAttachment {};
         blendAttachment.blendEnable = VK_TRUE;
         blendAttachment.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
         blendAttachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
@@ -231,10 +235,11 @@ struct Renderer::Impl {
         blend.attachmentCount = 1;
         blend.pAttachments = &blendAttachment;
 
-        const VkPrimitiveTopology topologies[TopologyCount] = {VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_PRIMITIVE_TOPOLOGY_LINE_LIST,
-                                                               VK_PRIMITIVE_TOPOLOGY_POINT_LIST};
+        const VkPrimitiveTopology topologies[TopologyCount]
+            = { VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_PRIMITIVE_TOPOLOGY_LINE_LIST, VK_PRIMITIVE_TOPOLOGY_POINT_LIST };
         for (int t = 0; t < TopologyCount; ++t) {
-            auto assembly = gpu::makeStruct<VkPipelineInputAssemblyStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO);
+            auto assembly
+                = gpu::makeStruct<VkPipelineInputAssemblyStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO);
             assembly.topology = topologies[t];
             auto info = gpu::makeStruct<VkGraphicsPipelineCreateInfo>(VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO);
             info.stageCount = 2;
@@ -252,27 +257,37 @@ struct Renderer::Impl {
         }
     }
 
-    void addVertices(Topology topology, std::uint32_t mode, float pointSize, const std::vector<glm::vec3>& points,
-                     const std::vector<glm::vec4>& colors)
+    void addVertices(
+        Topology topology, std::uint32_t mode, float pointSize, const std::vector<glm::vec3>& points, const std::vector<glm::vec4>& colors)
     {
         if (colors.size() != 1 && colors.size() != points.size())
             fail("Renderer: ", colors.size(), " colours for ", points.size(), " points (give one, or one per point)");
-        DrawItem item{topology, mode, pointSize, static_cast<std::uint32_t>(vertices.size()), static_cast<std::uint32_t>(points.size()), 0, 0};
+        DrawItem item { topology, mode, pointSize, static_cast<std::uint32_t>(vertices.size()), static_cast<std::uint32_t>(points.size()),
+            0, 0 };
         for (size_t i = 0; i < points.size(); ++i) {
             const glm::vec4& c = colors.size() == 1 ? colors[0] : colors[i];
             if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y) || !std::isfinite(points[i].z))
                 fail("Renderer: point ", i, " is not finite");
-            vertices.push_back({{points[i].x, points[i].y, points[i].z}, {0, 0, 0}, {c.r, c.g, c.b, c.a}});
+            vertices.push_back({ { points[i].x, points[i].y, points[i].z }, { 0, 0, 0 }, { c.r, c.g, c.b, c.a } });
         }
         items.push_back(item);
     }
 };
 
-Renderer::Renderer(gpu::Device& device, int width, int height, int samples) : impl_(std::make_unique<Impl>(device, width, height, samples)) {}
+Renderer::Renderer(gpu::Device& device, int width, int height, int samples)
+    : impl_(std::make_unique<Impl>(device, width, height, samples))
+{
+}
 Renderer::~Renderer() = default;
 
-int Renderer::width() const { return impl_->width; }
-int Renderer::height() const { return impl_->height; }
+int Renderer::width() const
+{
+    return impl_->width;
+}
+int Renderer::height() const
+{
+    return impl_->height;
+}
 
 void Renderer::addMesh(const Mesh& mesh, const MeshStyle& style, const std::vector<glm::vec4>& colors)
 {
@@ -281,14 +296,13 @@ void Renderer::addMesh(const Mesh& mesh, const MeshStyle& style, const std::vect
         fail("Renderer::addMesh: ", colors.size(), " colours for ", mesh.V.rows(), " vertices");
     const Vertices N = vertexNormals(mesh);
     auto& im = *impl_;
-    DrawItem item{TriangleList, style.lit ? std::uint32_t(DRAW_MODE_LIT) : std::uint32_t(DRAW_MODE_UNLIT), 1.0f,
-                  static_cast<std::uint32_t>(im.vertices.size()), static_cast<std::uint32_t>(mesh.V.rows()),
-                  static_cast<std::uint32_t>(im.indices.size()), static_cast<std::uint32_t>(mesh.F.size())};
+    DrawItem item { TriangleList, style.lit ? std::uint32_t(DRAW_MODE_LIT) : std::uint32_t(DRAW_MODE_UNLIT), 1.0f,
+        static_cast<std::uint32_t>(im.vertices.size()), static_cast<std::uint32_t>(mesh.V.rows()),
+        static_cast<std::uint32_t>(im.indices.size()), static_cast<std::uint32_t>(mesh.F.size()) };
     for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) {
         const glm::vec4 c = colors.empty() ? style.color : colors[v];
-        im.vertices.push_back({{float(mesh.V(v, 0)), float(mesh.V(v, 1)), float(mesh.V(v, 2))},
-                               {float(N(v, 0)), float(N(v, 1)), float(N(v, 2))},
-                               {c.r, c.g, c.b, c.a}});
+        im.vertices.push_back({ { float(mesh.V(v, 0)), float(mesh.V(v, 1)), float(mesh.V(v, 2)) },
+            { float(N(v, 0)), float(N(v, 1)), float(N(v, 2)) }, { c.r, c.g, c.b, c.a } });
     }
     for (Eigen::Index t = 0; t < mesh.F.rows(); ++t)
         for (int k = 0; k < 3; ++k)
@@ -337,18 +351,19 @@ Image Renderer::render(const Camera& camera, glm::vec4 background)
 
     const glm::mat4 viewProjection = glm::mat4(camera.projection * camera.view);
     // Head light: from the camera, raised a little so that the nose casts shading downwards.
-    const glm::dvec3 right = glm::normalize(glm::cross(camera.forward, glm::dvec3(camera.view[0][1], camera.view[1][1], camera.view[2][1])));
+    const glm::dvec3 right
+        = glm::normalize(glm::cross(camera.forward, glm::dvec3(camera.view[0][1], camera.view[1][1], camera.view[2][1])));
     const glm::dvec3 up = glm::cross(right, camera.forward);
     const glm::vec3 toLight = glm::normalize(glm::vec3(-camera.forward + 0.35 * up + 0.15 * right));
 
     gpu::submitAndWait(device, [&](VkCommandBuffer cmd) {
         VkClearValue clears[3] = {};
-        clears[0].color = {{background.r, background.g, background.b, background.a}};
-        clears[1].depthStencil = {1.0f, 0};
+        clears[0].color = { { background.r, background.g, background.b, background.a } };
+        clears[1].depthStencil = { 1.0f, 0 };
         auto begin = gpu::makeStruct<VkRenderPassBeginInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO);
         begin.renderPass = im.renderPass;
         begin.framebuffer = im.framebuffer;
-        begin.renderArea = {{0, 0}, {std::uint32_t(im.width), std::uint32_t(im.height)}};
+        begin.renderArea = { { 0, 0 }, { std::uint32_t(im.width), std::uint32_t(im.height) } };
         begin.clearValueCount = im.msaa() ? 3 : 2;
         begin.pClearValues = clears;
         vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
@@ -360,8 +375,8 @@ Image Renderer::render(const Camera& camera, glm::vec4 background)
         }
         for (const DrawItem& item : im.items) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, im.pipelines[item.topology]);
-            DrawConstants constants{viewProjection, glm::vec4(toLight, 0), item.mode, item.pointSize,
-                                    item.topology == TriangleList ? 0.0f : 2e-4f, 0.0f};
+            DrawConstants constants { viewProjection, glm::vec4(toLight, 0), item.mode, item.pointSize,
+                item.topology == TriangleList ? 0.0f : 2e-4f, 0.0f };
             vkCmdPushConstants(cmd, im.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(constants), &constants);
             if (item.topology == TriangleList)
                 vkCmdDrawIndexed(cmd, item.indexCount, 1, item.firstIndex, static_cast<std::int32_t>(item.firstVertex), 0);
@@ -370,9 +385,9 @@ Image Renderer::render(const Camera& camera, glm::vec4 background)
         }
         vkCmdEndRenderPass(cmd);
 
-        VkBufferImageCopy region{};
-        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        region.imageExtent = {std::uint32_t(im.width), std::uint32_t(im.height), 1};
+        VkBufferImageCopy region {};
+        region.imageSubresource = { VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1 };
+        region.imageExtent = { std::uint32_t(im.width), std::uint32_t(im.height), 1 };
         vkCmdCopyImageToBuffer(cmd, im.output().image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, im.readback.buffer, 1, &region);
         gpu::hostReadBarrier(cmd);
     });

@@ -10,9 +10,9 @@
 //   writePng("out.png", image);
 
 #include "core/mesh.h"
+#include "geometry/camera.h"
 #include "gpu/device.h"
 #include "io/png.h"
-#include "geometry/camera.h"
 
 #include <glm/glm.hpp>
 #include <memory>
@@ -21,8 +21,8 @@
 namespace facesketch {
 
 struct MeshStyle {
-    glm::vec4 color{0.78f, 0.72f, 0.68f, 1.0f}; ///< used when no per-vertex colours are given
-    bool lit = true;                             ///< Lambert + soft specular from a head light
+    glm::vec4 color { 0.78f, 0.72f, 0.68f, 1.0f }; ///< used when no per-vertex colours are given
+    bool lit = true;                               ///< Lambert + soft specular from a head light
 };
 
 class Renderer {
@@ -46,7 +46,7 @@ public:
     void clear();
 
     /// Draws all items seen by `camera` (whose width/height must match) over `background`.
-    Image render(const Camera& camera, glm::vec4 background = {1, 1, 1, 1});
+    Image render(const Camera& camera, glm::vec4 background = { 1, 1, 1, 1 });
 
 private:
     struct Impl;

@@ -31,8 +31,7 @@ Mppca syntheticMixture(Random& random, Eigen::Index vertices, int K, int q)
 }
 
 // Median of `repeats` timings of f, in milliseconds: the median ignores a stray context switch.
-template <typename F>
-double medianMilliseconds(int repeats, F&& f)
+template <typename F> double medianMilliseconds(int repeats, F&& f)
 {
     std::vector<double> times;
     for (int i = 0; i < repeats; ++i) {
@@ -85,7 +84,7 @@ FaceModel syntheticFaceModel(Random& random)
     correlation.mean = random.normalMatrix(latents, 1);
     correlation.W = random.normalMatrix(latents, 10);
     correlation.sigma2 = 0.25;
-    model.correlation.components = {correlation};
+    model.correlation.components = { correlation };
     model.correlation.priors = Eigen::VectorXd::Ones(1);
     return model;
 }
@@ -112,10 +111,8 @@ void benchStats(std::ostream& out)
     }
 
     double sink = 0.0;
-    out << "conditional_6000v_ms "
-        << medianMilliseconds(21, [&] { sink += infer(model, seen3d).reconstruction(0); }) << " ms\n";
-    out << "conditional2d_6000v_ms "
-        << medianMilliseconds(21, [&] { sink += infer(model, seen2d).reconstruction(0); }) << " ms\n";
+    out << "conditional_6000v_ms " << medianMilliseconds(21, [&] { sink += infer(model, seen3d).reconstruction(0); }) << " ms\n";
+    out << "conditional2d_6000v_ms " << medianMilliseconds(21, [&] { sink += infer(model, seen2d).reconstruction(0); }) << " ms\n";
 
     // One full reconstruction: 15% of the vertices seen, segments inferred, cleaned up and
     // correlated, then blended.
@@ -124,14 +121,13 @@ void benchStats(std::ostream& out)
     for (Eigen::Index v = 0; v < faceModel.vertexCount(); ++v)
         if (random.uniform() < 0.15)
             some.addVertex(v, faceModel.meanFace.segment<3>(3 * v) + random.normalMatrix(3, 1));
-    out << "face_reconstruct_6000v_ms "
-        << medianMilliseconds(11, [&] { sink += reconstruct(faceModel, some).face(0); }) << " ms\n";
+    out << "face_reconstruct_6000v_ms " << medianMilliseconds(11, [&] { sink += reconstruct(faceModel, some).face(0); }) << " ms\n";
     Observations noseOnly;
     for (Eigen::Index v = 0; v < faceModel.vertexCount(); ++v)
         if (faceModel.segmentation.core(v) == faceModel.segmentation.core(faceModel.vertexCount() / 2))
             noseOnly.addVertex(v, faceModel.meanFace.segment<3>(3 * v));
-    out << "face_reconstruct_one_region_6000v_ms "
-        << medianMilliseconds(11, [&] { sink += reconstruct(faceModel, noseOnly).face(0); }) << " ms\n";
+    out << "face_reconstruct_one_region_6000v_ms " << medianMilliseconds(11, [&] { sink += reconstruct(faceModel, noseOnly).face(0); })
+        << " ms\n";
 
     Eigen::MatrixXd faces(200, 3 * vertices);
     for (Eigen::Index i = 0; i < faces.rows(); ++i) {
@@ -141,8 +137,7 @@ void benchStats(std::ostream& out)
     MppcaOptions options;
     options.components = 3;
     options.latentDim = 20;
-    out << "mppca_fit_6000v_ms "
-        << medianMilliseconds(1, [&] { sink += fitMppca(faces, options).logLikelihood.back(); }) << " ms\n";
+    out << "mppca_fit_6000v_ms " << medianMilliseconds(1, [&] { sink += fitMppca(faces, options).logLikelihood.back(); }) << " ms\n";
     if (!std::isfinite(sink))
         out << "bench_stats_warning non-finite 0\n";
 }

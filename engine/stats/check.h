@@ -12,8 +12,7 @@ namespace facesketch::stats {
 
 /// Throws Error "<what>(i, j) = <value> is not finite" for the first NaN or infinity in A,
 /// scanning in storage order.
-template <typename Derived>
-void requireFinite(const Eigen::DenseBase<Derived>& A, const char* what)
+template <typename Derived> void requireFinite(const Eigen::DenseBase<Derived>& A, const char* what)
 {
     for (Eigen::Index j = 0; j < A.cols(); ++j)
         for (Eigen::Index i = 0; i < A.rows(); ++i)

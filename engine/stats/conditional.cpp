@@ -24,8 +24,7 @@ void Observations::addVertex(Eigen::Index vertex, const Eigen::Vector3d& xyz)
     size_ += 3;
 }
 
-void Observations::addProjectedVertex(Eigen::Index vertex, const Eigen::Matrix<double, 2, 3>& P,
-                                      const Eigen::Vector2d& image)
+void Observations::addProjectedVertex(Eigen::Index vertex, const Eigen::Matrix<double, 2, 3>& P, const Eigen::Vector2d& image)
 {
     if (vertex < 0)
         fail("Observations::addProjectedVertex: vertex ", vertex, " is negative");
@@ -33,8 +32,7 @@ void Observations::addProjectedVertex(Eigen::Index vertex, const Eigen::Matrix<d
     requireFinite(image, "Observations::addProjectedVertex: image");
     const double error = (P * P.transpose() - Eigen::Matrix2d::Identity()).cwiseAbs().maxCoeff();
     if (error > 1e-9)
-        fail("Observations::addProjectedVertex: the rows of P for vertex ", vertex,
-             " are not orthonormal (|P P^T - I| = ", error, ")");
+        fail("Observations::addProjectedVertex: the rows of P for vertex ", vertex, " are not orthonormal (|P P^T - I| = ", error, ")");
     Block b;
     b.first = 3 * vertex;
     b.width = 3;
@@ -81,8 +79,7 @@ void Observations::validate(Eigen::Index d) const
     std::vector<bool> seen(static_cast<size_t>(d), false);
     for (const Block& b : blocks_) {
         if (b.first + b.width > d)
-            fail("Observations: coordinates ", b.first, "..", b.first + b.width - 1,
-                 " lie outside a vector of dimension ", d);
+            fail("Observations: coordinates ", b.first, "..", b.first + b.width - 1, " lie outside a vector of dimension ", d);
         for (Eigen::Index i = b.first; i < b.first + b.width; ++i) {
             if (seen[static_cast<size_t>(i)])
                 fail("Observations: coordinate ", i, " (vertex ", i / 3, ") is measured twice");
@@ -118,8 +115,7 @@ Eigen::VectorXd Observations::residual(const Eigen::VectorXd& a) const
     Eigen::VectorXd r(size_);
     Eigen::Index row = 0;
     for (const Block& b : blocks_) {
-        r.segment(row, b.rows) =
-            b.y.head(b.rows) - b.P.topLeftCorner(b.rows, b.width) * a.segment(b.first, b.width);
+        r.segment(row, b.rows) = b.y.head(b.rows) - b.P.topLeftCorner(b.rows, b.width) * a.segment(b.first, b.width);
         row += b.rows;
     }
     return r;
@@ -178,8 +174,7 @@ ComponentPosterior condition(const Ppca& model, const Observations& observations
     return post;
 }
 
-Eigen::VectorXd conditionalMean(const Ppca& model, const Observations& observations,
-                                const ComponentPosterior& posterior)
+Eigen::VectorXd conditionalMean(const Ppca& model, const Observations& observations, const ComponentPosterior& posterior)
 {
     Eigen::VectorXd t = model.mean + model.W * posterior.latent;
     const Eigen::VectorXd unexplained = observations.residual(t);
@@ -205,8 +200,8 @@ Inference infer(const Mppca& model, const Observations& observations)
     result.winner = static_cast<int>(winner);
     result.posterior = (scores.array() - top).exp();
     result.posterior /= result.posterior.sum();
-    result.reconstruction = conditionalMean(model.components[static_cast<size_t>(winner)], observations,
-                                            result.components[static_cast<size_t>(winner)]);
+    result.reconstruction
+        = conditionalMean(model.components[static_cast<size_t>(winner)], observations, result.components[static_cast<size_t>(winner)]);
     return result;
 }
 

@@ -45,8 +45,7 @@ public:
 
     /// The image of vertex v in a view: P t(3v .. 3v+2) = image. P is 2 by 3 with orthonormal
     /// rows (|P P^T - I| <= 1e-9), e.g. the x and y rows of a rotation.
-    void addProjectedVertex(Eigen::Index vertex, const Eigen::Matrix<double, 2, 3>& P,
-                            const Eigen::Vector2d& image);
+    void addProjectedVertex(Eigen::Index vertex, const Eigen::Matrix<double, 2, 3>& P, const Eigen::Vector2d& image);
 
     /// One coordinate: t(index) = value (for vectors that are not faces, e.g. the latent
     /// vectors of the segment correlation, thesis 4.2.5).
@@ -79,9 +78,9 @@ public:
 
 private:
     struct Block {
-        Eigen::Index first = 0; // first coordinate touched
-        int width = 0;          // coordinates touched: 1 or 3
-        int rows = 0;           // measurements: 1, 2 or 3
+        Eigen::Index first = 0;                      // first coordinate touched
+        int width = 0;                               // coordinates touched: 1 or 3
+        int rows = 0;                                // measurements: 1, 2 or 3
         Eigen::Matrix3d P = Eigen::Matrix3d::Zero(); // rows by width used
         Eigen::Vector3d y = Eigen::Vector3d::Zero(); // rows used
     };
@@ -105,8 +104,7 @@ struct ComponentPosterior {
 ComponentPosterior condition(const Ppca& model, const Observations& observations);
 
 /// E[t | y] under one PPCA (d values), from the posterior computed by condition().
-Eigen::VectorXd conditionalMean(const Ppca& model, const Observations& observations,
-                                const ComponentPosterior& posterior);
+Eigen::VectorXd conditionalMean(const Ppca& model, const Observations& observations, const ComponentPosterior& posterior);
 
 struct Inference {
     /// Component with the highest score (the lowest index on a tie).

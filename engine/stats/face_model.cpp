@@ -34,8 +34,8 @@ Eigen::VectorXd cleanUpSegment(const SegmentModel& sm, const Eigen::VectorXd& pa
 
 } // namespace
 
-FaceModel trainFaceModel(const Eigen::MatrixXd& faces, const Triangles& triangles, int noseTip,
-                         const FaceModelOptions& options, const TrainProgress& progress)
+FaceModel trainFaceModel(
+    const Eigen::MatrixXd& faces, const Triangles& triangles, int noseTip, const FaceModelOptions& options, const TrainProgress& progress)
 {
     requireFinite(faces, "trainFaceModel: faces");
     const Eigen::Index n = faces.rows();
@@ -77,16 +77,14 @@ FaceModel trainFaceModel(const Eigen::MatrixXd& faces, const Triangles& triangle
                 candidates.push_back(K);
         if (candidates.empty())
             candidates.push_back(1);
-        o.components = candidates.size() == 1 ? candidates.front()
-                                              : chooseComponents(Xs, candidates, o, options.folds).best;
+        o.components = candidates.size() == 1 ? candidates.front() : chooseComponents(Xs, candidates, o, options.folds).best;
         const MppcaFit fit = fitMppca(Xs, o);
         SegmentModel sm;
         sm.mixture = fit.model;
         sm.logLikelihood = fit.logLikelihood.back() / static_cast<double>(n);
         sm.cleanUp = fitPpca(Xs, static_cast<int>(std::clamp<Eigen::Index>(options.cleanUpDim, 1, std::min(d - 1, n - 2))));
         model.segments.push_back(std::move(sm));
-        report("segment " + std::to_string(s + 1) + " of " + std::to_string(segments),
-               (s + 1.0) / (segments + 1.0));
+        report("segment " + std::to_string(s + 1) + " of " + std::to_string(segments), (s + 1.0) / (segments + 1.0));
     }
 
     // Correlation (4.2.5): one row of concatenated clean-up latents per training face.
@@ -160,29 +158,32 @@ void deriveFaceModel(FaceModel& model)
 const char* correlationName(Correlation correlation)
 {
     switch (correlation) {
-    case Correlation::Off: return "off";
-    case Correlation::Thesis: return "thesis";
-    case Correlation::Joint: return "joint";
+    case Correlation::Off:
+        return "off";
+    case Correlation::Thesis:
+        return "thesis";
+    case Correlation::Joint:
+        return "joint";
     }
     return "?";
 }
 
 Correlation parseCorrelation(const std::string& text)
 {
-    return parseName(text, std::array{Correlation::Off, Correlation::Thesis, Correlation::Joint}, correlationName, "correlation");
+    return parseName(text, std::array { Correlation::Off, Correlation::Thesis, Correlation::Joint }, correlationName, "correlation");
 }
 
 std::string describe(const FaceModel& model)
 {
     std::ostringstream out;
-    out << std::setw(8) << "segment" << std::setw(10) << "vertices" << std::setw(12) << "components" << std::setw(8)
-        << "latent" << std::setw(10) << "clean-up" << std::setw(22) << "log-likelihood/face" << "\n";
+    out << std::setw(8) << "segment" << std::setw(10) << "vertices" << std::setw(12) << "components" << std::setw(8) << "latent"
+        << std::setw(10) << "clean-up" << std::setw(22) << "log-likelihood/face"
+        << "\n";
     for (size_t s = 0; s < model.segments.size(); ++s) {
         const SegmentModel& sm = model.segments[s];
-        out << std::setw(8) << s + 1 << std::setw(10) << model.segmentation.vertices[s].size() << std::setw(12)
-            << sm.mixture.size() << std::setw(8) << (sm.mixture.size() > 0 ? sm.mixture.components.front().latentDim() : 0)
-            << std::setw(10) << sm.cleanUp.latentDim() << std::setw(22) << std::fixed << std::setprecision(1)
-            << sm.logLikelihood << "\n";
+        out << std::setw(8) << s + 1 << std::setw(10) << model.segmentation.vertices[s].size() << std::setw(12) << sm.mixture.size()
+            << std::setw(8) << (sm.mixture.size() > 0 ? sm.mixture.components.front().latentDim() : 0) << std::setw(10)
+            << sm.cleanUp.latentDim() << std::setw(22) << std::fixed << std::setprecision(1) << sm.logLikelihood << "\n";
     }
     out << "correlation: " << model.correlation.size() << " components over " << model.correlation.dim() << " latents\n";
     out << "joint model: " << model.joint.size() << " components over " << model.joint.dim() << " coordinates, "
@@ -229,8 +230,7 @@ Reconstruction reconstruct(const FaceModel& model, const Observations& observati
         anyMeasured = true;
         const Inference inference = infer(sm.mixture, local);
         result.winners[static_cast<size_t>(s)] = inference.winner;
-        parts[static_cast<size_t>(s)] = options.cleanUp ? cleanUpSegment(sm, inference.reconstruction)
-                                                        : inference.reconstruction;
+        parts[static_cast<size_t>(s)] = options.cleanUp ? cleanUpSegment(sm, inference.reconstruction) : inference.reconstruction;
     }
 
     // Steps 2-4 of thesis 4.2.5: the measured segments' latents are the known part of a
@@ -254,9 +254,9 @@ Reconstruction reconstruct(const FaceModel& model, const Observations& observati
     for (int s = 0; s < segments; ++s) {
         const Ppca& p = model.segments[static_cast<size_t>(s)].cleanUp;
         if (result.winners[static_cast<size_t>(s)] < 0)
-            parts[static_cast<size_t>(s)] =
-                latents.size() > 0 ? Eigen::VectorXd(fromLatent(p, latents.segment(offset, p.latentDim()).transpose()).transpose())
-                                   : Eigen::VectorXd(model.meanFace(segmentCoordinates(seg, s)));
+            parts[static_cast<size_t>(s)] = latents.size() > 0
+                ? Eigen::VectorXd(fromLatent(p, latents.segment(offset, p.latentDim()).transpose()).transpose())
+                : Eigen::VectorXd(model.meanFace(segmentCoordinates(seg, s)));
         offset += p.latentDim();
     }
     result.face = blendSegments(seg, parts);

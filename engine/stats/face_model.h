@@ -50,7 +50,7 @@ struct FaceModelOptions {
     SegmentationOptions segmentation;
     /// Candidate numbers of components per segment, chosen by held-out likelihood with
     /// `folds`-fold cross-validation (stats/mppca.h, chooseComponents).
-    std::vector<int> components = {1, 2, 3, 4};
+    std::vector<int> components = { 1, 2, 3, 4 };
     int folds = 5;
     /// Latent dimension q of every segment mixture component, clamped to the segment's
     /// dimension and to the smallest cross-validation training set; candidates K that would
@@ -107,8 +107,8 @@ using TrainProgress = std::function<void(const std::string& what, double fractio
 /// @param[in] triangles #F by 3 triangles of the shared topology
 /// @param[in] noseTip   index of the nose-tip vertex
 /// Throws Error naming the row and column of a NaN in faces, or for fewer than 4 faces.
-FaceModel trainFaceModel(const Eigen::MatrixXd& faces, const Triangles& triangles, int noseTip,
-                         const FaceModelOptions& options = {}, const TrainProgress& progress = {});
+FaceModel trainFaceModel(const Eigen::MatrixXd& faces, const Triangles& triangles, int noseTip, const FaceModelOptions& options = {},
+    const TrainProgress& progress = {});
 
 /// How measured segments inform the others (step 2 above).
 enum class Correlation { Off, Thesis, Joint };
@@ -156,13 +156,11 @@ void deriveFaceModel(FaceModel& model);
 std::string describe(const FaceModel& model);
 
 /// The most probable face given the measurements (vertex indices are those of the model).
-Reconstruction reconstruct(const FaceModel& model, const Observations& observations,
-                           const ReconstructOptions& options = {});
+Reconstruction reconstruct(const FaceModel& model, const Observations& observations, const ReconstructOptions& options = {});
 
 /// The whole head for the measurements: reconstruct(), then the rigid parts moved with the
 /// skin around them (stats/rigid.h assembleHead). Returns #head vertices by 3 and the head's
 /// triangles. Throws Error for a skin-only model.
-Mesh reconstructHead(const FaceModel& model, const Observations& observations,
-                     const ReconstructOptions& options = {});
+Mesh reconstructHead(const FaceModel& model, const Observations& observations, const ReconstructOptions& options = {});
 
 } // namespace facesketch::stats

@@ -87,8 +87,7 @@ void checkK(Eigen::Index n, int K, const char* who)
         fail(who, ": K = ", K, " outside [1, ", n, "]");
 }
 
-template <typename Space>
-std::vector<int> farthestFirst(const Space& space, int K, int first)
+template <typename Space> std::vector<int> farthestFirst(const Space& space, int K, int first)
 {
     const Eigen::Index n = space.size();
     if (first < 0) {
@@ -98,7 +97,7 @@ std::vector<int> farthestFirst(const Space& space, int K, int first)
     } else if (first >= n) {
         fail("kmeans: firstSeed = ", first, " outside [0, ", n, ")");
     }
-    std::vector<int> seeds{first};
+    std::vector<int> seeds { first };
     Eigen::VectorXd nearest(n);
     for (Eigen::Index i = 0; i < n; ++i)
         nearest(i) = space.distance(i, first);
@@ -115,12 +114,11 @@ std::vector<int> farthestFirst(const Space& space, int K, int first)
     return seeds;
 }
 
-template <typename Space>
-std::vector<int> plusPlus(const Space& space, int K, std::uint64_t seed)
+template <typename Space> std::vector<int> plusPlus(const Space& space, int K, std::uint64_t seed)
 {
     const Eigen::Index n = space.size();
     Random random(seed);
-    std::vector<int> seeds{static_cast<int>(random.index(n))};
+    std::vector<int> seeds { static_cast<int>(random.index(n)) };
     Eigen::VectorXd nearest = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
     std::vector<bool> chosen(static_cast<size_t>(n), false);
     chosen[static_cast<size_t>(seeds[0])] = true;
@@ -164,8 +162,7 @@ double objectiveOf(const Eigen::MatrixXd& D, const Eigen::VectorXi& labels)
 // Gives every empty cluster the sample farthest from its own mean among clusters with two or
 // more members. Removing that sample from its cluster lowers J by its distance at least, and
 // as the sole member of the empty cluster it costs nothing.
-template <typename Space>
-void refillEmptyClusters(const Space& space, Eigen::VectorXi& labels, int K)
+template <typename Space> void refillEmptyClusters(const Space& space, Eigen::VectorXi& labels, int K)
 {
     for (;;) {
         Eigen::VectorXi size = Eigen::VectorXi::Zero(K);
@@ -189,12 +186,10 @@ void refillEmptyClusters(const Space& space, Eigen::VectorXi& labels, int K)
     }
 }
 
-template <typename Space>
-KMeansResult lloyd(const Space& space, int K, const KMeansOptions& options)
+template <typename Space> KMeansResult lloyd(const Space& space, int K, const KMeansOptions& options)
 {
     KMeansResult result;
-    result.seeds = options.seeding == Seeding::KMedoids ? farthestFirst(space, K, options.firstSeed)
-                                                        : plusPlus(space, K, options.seed);
+    result.seeds = options.seeding == Seeding::KMedoids ? farthestFirst(space, K, options.firstSeed) : plusPlus(space, K, options.seed);
     const Eigen::Index n = space.size();
 
     // Assign to the nearest seed (the medoids), then iterate on cluster means.
@@ -250,7 +245,7 @@ std::vector<int> kmedoidsSeeds(const Eigen::MatrixXd& G, int K)
     if (G.cols() != G.rows())
         fail("kmedoidsSeeds: G is ", G.rows(), " by ", G.cols(), ", expected square");
     checkK(G.rows(), K, "kmedoidsSeeds");
-    return farthestFirst(GramSpace{G}, K, -1);
+    return farthestFirst(GramSpace { G }, K, -1);
 }
 
 std::vector<int> kmeansPlusPlusSeeds(const Eigen::MatrixXd& G, int K, std::uint64_t seed)
@@ -258,7 +253,7 @@ std::vector<int> kmeansPlusPlusSeeds(const Eigen::MatrixXd& G, int K, std::uint6
     if (G.cols() != G.rows())
         fail("kmeansPlusPlusSeeds: G is ", G.rows(), " by ", G.cols(), ", expected square");
     checkK(G.rows(), K, "kmeansPlusPlusSeeds");
-    return plusPlus(GramSpace{G}, K, seed);
+    return plusPlus(GramSpace { G }, K, seed);
 }
 
 KMeansResult kmeansGram(const Eigen::MatrixXd& G, int K, const KMeansOptions& options)
@@ -267,7 +262,7 @@ KMeansResult kmeansGram(const Eigen::MatrixXd& G, int K, const KMeansOptions& op
         fail("kmeans: G is ", G.rows(), " by ", G.cols(), ", expected square");
     requireFinite(G, "kmeans: G");
     checkK(G.rows(), K, "kmeans");
-    return lloyd(GramSpace{G}, K, options);
+    return lloyd(GramSpace { G }, K, options);
 }
 
 KMeansResult kmeans(const Eigen::MatrixXd& X, int K, const KMeansOptions& options)
@@ -276,10 +271,10 @@ KMeansResult kmeans(const Eigen::MatrixXd& X, int K, const KMeansOptions& option
     checkK(X.rows(), K, "kmeans");
     KMeansResult result;
     if (X.cols() < X.rows()) {
-        result = lloyd(DataSpace{X}, K, options);
+        result = lloyd(DataSpace { X }, K, options);
     } else {
         const Eigen::MatrixXd G = centredGram(X);
-        result = lloyd(GramSpace{G}, K, options);
+        result = lloyd(GramSpace { G }, K, options);
     }
     result.centres = DataSpace::means(X, result.labels, K);
     return result;

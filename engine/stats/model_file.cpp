@@ -17,7 +17,7 @@ static_assert(std::endian::native == std::endian::little, "the model file is wri
 
 namespace {
 
-constexpr char kMagic[8] = {'F', 'S', 'K', 'F', 'A', 'C', 'E', '\0'};
+constexpr char kMagic[8] = { 'F', 'S', 'K', 'F', 'A', 'C', 'E', '\0' };
 
 std::uint64_t fnv1a(const std::string& bytes)
 {
@@ -26,13 +26,8 @@ std::uint64_t fnv1a(const std::string& bytes)
 
 class Writer {
 public:
-    template <typename T>
-    void scalar(T value)
-    {
-        bytes_.append(reinterpret_cast<const char*>(&value), sizeof(T));
-    }
-    template <typename Derived>
-    void matrix(const Eigen::DenseBase<Derived>& A)
+    template <typename T> void scalar(T value) { bytes_.append(reinterpret_cast<const char*>(&value), sizeof(T)); }
+    template <typename Derived> void matrix(const Eigen::DenseBase<Derived>& A)
     {
         scalar<std::uint64_t>(static_cast<std::uint64_t>(A.rows()));
         scalar<std::uint64_t>(static_cast<std::uint64_t>(A.cols()));
@@ -71,11 +66,13 @@ private:
 class Reader {
 public:
     Reader(const std::string& bytes, size_t begin, size_t end, const std::filesystem::path& path)
-        : bytes_(bytes), at_(begin), end_(end), path_(path)
+        : bytes_(bytes)
+        , at_(begin)
+        , end_(end)
+        , path_(path)
     {
     }
-    template <typename T>
-    T scalar(const char* what)
+    template <typename T> T scalar(const char* what)
     {
         need(sizeof(T), what);
         T value;
@@ -83,15 +80,13 @@ public:
         at_ += sizeof(T);
         return value;
     }
-    template <typename Scalar>
-    Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> matrix(const char* what)
+    template <typename Scalar> Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> matrix(const char* what)
     {
         const auto rows = scalar<std::uint64_t>(what);
         const auto cols = scalar<std::uint64_t>(what);
         // Checked by division so a corrupt size cannot overflow the product.
         if (cols != 0 && rows > (end_ - at_) / sizeof(Scalar) / cols)
-            fail(path_.string(), ": ", what, " claims ", rows, " by ", cols, " values at byte ", at_,
-                 ", more than the file holds");
+            fail(path_.string(), ": ", what, " claims ", rows, " by ", cols, " values at byte ", at_, ", more than the file holds");
         Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> A(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
         const size_t size = sizeof(Scalar) * static_cast<size_t>(rows * cols);
         if (size > 0)
@@ -113,8 +108,8 @@ public:
         p.W = matrix<double>(what);
         p.sigma2 = scalar<double>(what);
         if (p.W.rows() != p.mean.size() || !(p.sigma2 > 0.0))
-            fail(path_.string(), ": ", what, " is inconsistent (", p.mean.size(), " means, W ", p.W.rows(), " by ",
-                 p.W.cols(), ", sigma^2 ", p.sigma2, ")");
+            fail(path_.string(), ": ", what, " is inconsistent (", p.mean.size(), " means, W ", p.W.rows(), " by ", p.W.cols(),
+                ", sigma^2 ", p.sigma2, ")");
         return p;
     }
     Mppca mixture(const char* what)
@@ -139,7 +134,7 @@ public:
     std::vector<int> indices(const char* what)
     {
         const Eigen::MatrixXi list = matrix<int>(what);
-        return {list.data(), list.data() + list.size()};
+        return { list.data(), list.data() + list.size() };
     }
     bool done() const { return at_ == end_; }
     size_t at() const { return at_; }
@@ -214,12 +209,11 @@ FaceModel loadFaceModel(const std::filesystem::path& path)
     Reader head(bytes, sizeof(kMagic), bytes.size(), path);
     const auto version = head.scalar<std::uint32_t>("the version");
     if (version != kFaceModelVersion)
-        fail(path.string(), ": model format version ", version, ", this program reads version ", kFaceModelVersion,
-             "; retrain the model");
+        fail(path.string(), ": model format version ", version, ", this program reads version ", kFaceModelVersion, "; retrain the model");
     const auto length = head.scalar<std::uint64_t>("the payload length");
     if (length > bytes.size() - header || bytes.size() - header - length != sizeof(std::uint64_t))
         fail(path.string(), ": ", bytes.size(), " bytes, but the header announces ", length,
-             " bytes of payload; the file is truncated or has trailing data");
+            " bytes of payload; the file is truncated or has trailing data");
     const std::string payload = bytes.substr(header, static_cast<size_t>(length));
     std::uint64_t stored = 0;
     std::memcpy(&stored, bytes.data() + header + length, sizeof(stored));

@@ -28,14 +28,13 @@ Eigen::VectorXd gramLogDensity(const Eigen::MatrixXd& G, const GramPpca& c, Eige
     const Eigen::ArrayXd dist2 = ((G.diagonal() - 2.0 * Gw).array() + wGw).max(0.0);
     const Eigen::MatrixXd BtG = c.B.transpose() * G;
     const Eigen::MatrixXd Z = BtG.colwise() - c.B.transpose() * Gw; // q by n: W^T (x_j - mu)
-    Eigen::MatrixXd M = BtG * c.B;                                   // W^T W
+    Eigen::MatrixXd M = BtG * c.B;                                  // W^T W
     M = 0.5 * (M + M.transpose()).eval();
     M.diagonal().array() += c.sigma2;
     const Eigen::LLT<Eigen::MatrixXd> llt(M);
     const Eigen::MatrixXd L = llt.matrixL().solve(Z);
     const Eigen::ArrayXd quad = ((dist2 - L.colwise().squaredNorm().transpose().array()) / c.sigma2).max(0.0);
-    const double logDetC = static_cast<double>(d - q) * std::log(c.sigma2) +
-                           2.0 * llt.matrixLLT().diagonal().array().log().sum();
+    const double logDetC = static_cast<double>(d - q) * std::log(c.sigma2) + 2.0 * llt.matrixLLT().diagonal().array().log().sum();
     return -0.5 * (quad + static_cast<double>(d) * std::log(2.0 * std::numbers::pi) + logDetC);
 }
 
@@ -60,8 +59,7 @@ struct GramFit {
     int start = 0;
 };
 
-Eigen::MatrixXd logJointOf(const Eigen::MatrixXd& G, const std::vector<GramPpca>& components,
-                           const Eigen::VectorXd& priors, Eigen::Index d)
+Eigen::MatrixXd logJointOf(const Eigen::MatrixXd& G, const std::vector<GramPpca>& components, const Eigen::VectorXd& priors, Eigen::Index d)
 {
     Eigen::MatrixXd J(G.rows(), static_cast<Eigen::Index>(components.size()));
     for (size_t k = 0; k < components.size(); ++k) {
@@ -73,8 +71,8 @@ Eigen::MatrixXd logJointOf(const Eigen::MatrixXd& G, const std::vector<GramPpca>
 
 // EM on the samples listed in `train`, from a K-means labelling of them; the other rows of G
 // only get log-densities (for held-out scoring) and zero responsibilities.
-GramFit runEmFrom(const Eigen::MatrixXd& G, const Eigen::MatrixXd* factor, Eigen::Index d, const Indices& train,
-                  const MppcaOptions& o, const Eigen::VectorXi& labels, const GramPpca& global, double floor)
+GramFit runEmFrom(const Eigen::MatrixXd& G, const Eigen::MatrixXd* factor, Eigen::Index d, const Indices& train, const MppcaOptions& o,
+    const Eigen::VectorXi& labels, const GramPpca& global, double floor)
 {
     const Eigen::Index n = G.rows();
     const auto nTrain = static_cast<Eigen::Index>(train.size());
@@ -178,8 +176,7 @@ GramFit runEmFrom(const Eigen::MatrixXd& G, const Eigen::MatrixXd* factor, Eigen
 // Validates the options, then runs EM from every start of options.restarts and keeps the fit
 // of highest training likelihood (the earliest on a tie). factor: the centred samples when
 // d < n (see fitPpcaGram), else null.
-GramFit runEm(const Eigen::MatrixXd& G, const Eigen::MatrixXd* factor, Eigen::Index d, const Indices& train,
-              const MppcaOptions& o)
+GramFit runEm(const Eigen::MatrixXd& G, const Eigen::MatrixXd* factor, Eigen::Index d, const Indices& train, const MppcaOptions& o)
 {
     const Eigen::Index n = G.rows();
     const auto nTrain = static_cast<Eigen::Index>(train.size());
@@ -192,8 +189,7 @@ GramFit runEm(const Eigen::MatrixXd& G, const Eigen::MatrixXd* factor, Eigen::In
 
     Eigen::VectorXd uniform = Eigen::VectorXd::Zero(n);
     uniform(train).setConstant(1.0 / static_cast<double>(nTrain));
-    const double meanVariance =
-        (uniform.dot(G.diagonal()) - uniform.dot(G * uniform)) / static_cast<double>(d);
+    const double meanVariance = (uniform.dot(G.diagonal()) - uniform.dot(G * uniform)) / static_cast<double>(d);
     if (!(meanVariance > 0.0))
         fail("fitMppca: the ", nTrain, " training samples are all identical");
     const double floor = o.varianceFloor * meanVariance;
@@ -248,12 +244,10 @@ MppcaFit fitMppca(const Eigen::MatrixXd& X, const MppcaOptions& options)
 Eigen::MatrixXd componentLogLikelihoods(const Mppca& model, const Eigen::MatrixXd& T)
 {
     if (model.size() == 0 || model.priors.size() != model.size())
-        fail("componentLogLikelihoods: the model has ", model.size(), " components and ",
-             model.priors.size(), " priors");
+        fail("componentLogLikelihoods: the model has ", model.size(), " components and ", model.priors.size(), " priors");
     Eigen::MatrixXd J(T.rows(), model.size());
     for (Eigen::Index k = 0; k < model.size(); ++k)
-        J.col(k) = logLikelihood(model.components[static_cast<size_t>(k)], T).array() +
-                   std::log(model.priors(k));
+        J.col(k) = logLikelihood(model.components[static_cast<size_t>(k)], T).array() + std::log(model.priors(k));
     return J;
 }
 
@@ -268,8 +262,8 @@ Eigen::MatrixXd responsibilities(const Mppca& model, const Eigen::MatrixXd& T)
     return (J.colwise() - logSumExpRows(J)).array().exp();
 }
 
-ComponentChoice chooseComponents(const Eigen::MatrixXd& X, const std::vector<int>& candidates,
-                                 const MppcaOptions& options, int folds, std::uint64_t seed)
+ComponentChoice chooseComponents(
+    const Eigen::MatrixXd& X, const std::vector<int>& candidates, const MppcaOptions& options, int folds, std::uint64_t seed)
 {
     requireFinite(X, "chooseComponents: X");
     const Eigen::Index n = X.rows();
@@ -299,7 +293,7 @@ ComponentChoice chooseComponents(const Eigen::MatrixXd& X, const std::vector<int
             fail("chooseComponents: candidate K = ", K, " outside [1, ", n, ")");
         MppcaOptions o = options;
         o.components = K;
-        ComponentScore score{K, 0.0, 0.0};
+        ComponentScore score { K, 0.0, 0.0 };
         for (size_t f = 0; f < train.size(); ++f) {
             try {
                 const GramFit fit = runEm(G, factor, X.cols(), train[f], o);

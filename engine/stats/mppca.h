@@ -129,7 +129,7 @@ struct ComponentChoice {
 /// @param[in] options     everything but options.components is used for every fit
 /// @param[in] folds       number of folds, 2 <= folds <= n
 /// @param[in] seed        seed of the fold permutation
-ComponentChoice chooseComponents(const Eigen::MatrixXd& X, const std::vector<int>& candidates,
-                                 const MppcaOptions& options, int folds = 5, std::uint64_t seed = 1);
+ComponentChoice chooseComponents(
+    const Eigen::MatrixXd& X, const std::vector<int>& candidates, const MppcaOptions& options, int folds = 5, std::uint64_t seed = 1);
 
 } // namespace facesketch::stats

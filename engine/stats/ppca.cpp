@@ -34,8 +34,8 @@ void checkModel(const Ppca& model, Eigen::Index cols, const char* who)
 
 } // namespace
 
-GramPpca fitPpcaGram(const Eigen::MatrixXd& G, const Eigen::VectorXd& weights, Eigen::Index d, int q,
-                     double sigma2Floor, const Eigen::MatrixXd* factor)
+GramPpca fitPpcaGram(
+    const Eigen::MatrixXd& G, const Eigen::VectorXd& weights, Eigen::Index d, int q, double sigma2Floor, const Eigen::MatrixXd* factor)
 {
     const Eigen::Index n = G.rows();
     if (q < 1 || q >= d)
@@ -207,8 +207,7 @@ Eigen::VectorXd logLikelihood(const Ppca& model, const Eigen::MatrixXd& T)
     const Eigen::MatrixXd E = T.rowwise() - model.mean.transpose();
     const Eigen::MatrixXd Z = model.W.transpose() * E.transpose();
     const Eigen::MatrixXd L = llt.matrixL().solve(Z);
-    const Eigen::VectorXd quad =
-        (E.rowwise().squaredNorm() - L.colwise().squaredNorm().transpose()) / model.sigma2;
+    const Eigen::VectorXd quad = (E.rowwise().squaredNorm() - L.colwise().squaredNorm().transpose()) / model.sigma2;
     return -0.5 * (quad.array() + d * std::log(2.0 * std::numbers::pi) + logDetC);
 }
 

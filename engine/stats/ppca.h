@@ -62,8 +62,8 @@ struct GramPpca {
 ///                     still the constrained maximum-likelihood solution.
 /// @param[in] factor   optional n by r matrix F with F F^T = G (the centred samples themselves
 ///                     when d < n): used when r is smaller than the support. Not owned.
-GramPpca fitPpcaGram(const Eigen::MatrixXd& G, const Eigen::VectorXd& weights, Eigen::Index d, int q,
-                     double sigma2Floor = 0.0, const Eigen::MatrixXd* factor = nullptr);
+GramPpca fitPpcaGram(const Eigen::MatrixXd& G, const Eigen::VectorXd& weights, Eigen::Index d, int q, double sigma2Floor = 0.0,
+    const Eigen::MatrixXd* factor = nullptr);
 
 /// The model of a GramPpca in data space: mean = centre + Xc^T weights, W = Xc^T B.
 /// @param[in] Xc      n by d samples after subtracting centre (the ones G was built from)

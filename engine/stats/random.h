@@ -15,7 +15,10 @@ namespace facesketch::stats {
 
 class Random {
 public:
-    explicit Random(std::uint64_t seed) : engine_(seed) {}
+    explicit Random(std::uint64_t seed)
+        : engine_(seed)
+    {
+    }
 
     /// Uniform in [0, 1) with 53 random bits.
     double uniform();

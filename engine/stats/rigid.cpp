@@ -43,8 +43,8 @@ Similarity fitSimilarity(const Vertices& from, const Vertices& to, bool allowSca
     return out;
 }
 
-RigidPart makeRigidPart(const std::string& name, const std::vector<int>& vertices, const Vertices& meanSkin,
-                        const Vertices& meanHead, int anchorCount, bool scale)
+RigidPart makeRigidPart(const std::string& name, const std::vector<int>& vertices, const Vertices& meanSkin, const Vertices& meanHead,
+    int anchorCount, bool scale)
 {
     if (vertices.empty())
         fail("rigid part '", name, "' has no vertices");
@@ -66,7 +66,7 @@ RigidPart makeRigidPart(const std::string& name, const std::vector<int>& vertice
     const auto count = std::min<size_t>(static_cast<size_t>(anchorCount), order.size());
     auto distance = [&](int v) { return (meanSkin.row(v) - centre).squaredNorm(); };
     std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(count), order.end(),
-                      [&](int a, int b) { return distance(a) < distance(b) || (distance(a) == distance(b) && a < b); });
+        [&](int a, int b) { return distance(a) < distance(b) || (distance(a) == distance(b) && a < b); });
     part.anchors.assign(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(count));
     std::sort(part.anchors.begin(), part.anchors.end());
     return part;
@@ -84,7 +84,7 @@ void validateHeadLayout(const HeadLayout& layout, Eigen::Index skinVertices, con
         const RigidPart& part = layout.parts[p];
         if (part.mean.rows() != static_cast<Eigen::Index>(part.vertices.size()) || part.anchors.empty())
             fail(where, ": rigid part '", part.name, "' has ", part.vertices.size(), " vertices, ", part.mean.rows(),
-                 " mean positions and ", part.anchors.size(), " anchors");
+                " mean positions and ", part.anchors.size(), " anchors");
         for (int v : part.vertices) {
             if (v < 0 || v >= V)
                 fail(where, ": rigid part '", part.name, "' holds vertex ", v, " outside [0, ", V, ")");

@@ -71,8 +71,8 @@ struct HeadLayout {
 /// centroid of the part's vertices (all skin vertices if there are fewer).
 /// @param[in] meanSkin  #S by 3 skin vertices of the mean head (the model's numbering)
 /// @param[in] meanHead  #V by 3 vertices of the mean head
-RigidPart makeRigidPart(const std::string& name, const std::vector<int>& vertices, const Vertices& meanSkin,
-                        const Vertices& meanHead, int anchorCount, bool scale = true);
+RigidPart makeRigidPart(const std::string& name, const std::vector<int>& vertices, const Vertices& meanSkin, const Vertices& meanHead,
+    int anchorCount, bool scale = true);
 
 /// The whole head for a skin face: skin vertices from `skin` (3 #S values, laid out x0, y0,
 /// z0, x1, ...), each part moved by the similarity fitted from its anchors' mean positions

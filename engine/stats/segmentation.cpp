@@ -34,8 +34,7 @@ Adjacency adjacency(const Mesh& mesh)
 
 // Ring distance from `sources` (distance 1) to every vertex with `inside(v)` true, up to
 // `limit`; 0 where not reached.
-template <typename Inside>
-std::vector<int> ringDistance(const Adjacency& next, const std::vector<int>& sources, Inside inside, int limit)
+template <typename Inside> std::vector<int> ringDistance(const Adjacency& next, const std::vector<int>& sources, Inside inside, int limit)
 {
     std::vector<int> distance(next.size(), 0);
     std::deque<int> queue;
@@ -61,8 +60,7 @@ std::vector<int> ringDistance(const Adjacency& next, const std::vector<int>& sou
 // Merges every group smaller than minVertices into a neighbour, smallest first: into the
 // neighbour sharing most edges among those that stay within maxVertices, else into the
 // smallest neighbour, else (no neighbour: a separate mesh component) the nearest centroid.
-void mergeSmallGroups(Eigen::VectorXi& label, int groups, const Adjacency& next, const Eigen::MatrixXd& P,
-                      const SegmentationOptions& o)
+void mergeSmallGroups(Eigen::VectorXi& label, int groups, const Adjacency& next, const Eigen::MatrixXd& P, const SegmentationOptions& o)
 {
     for (;;) {
         Eigen::VectorXi size = Eigen::VectorXi::Zero(groups);
@@ -122,8 +120,8 @@ Segmentation segmentFace(const Mesh& mean, int noseTip, const SegmentationOption
     if (noseTip < 0 || noseTip >= nv)
         fail("segmentFace: nose tip ", noseTip, " outside [0, ", nv, ")");
     if (o.clusters < 1 || o.minVertices < 0 || o.maxVertices < 1 || o.overlapRings < 0)
-        fail("segmentFace: options out of range (clusters ", o.clusters, ", minVertices ", o.minVertices,
-             ", maxVertices ", o.maxVertices, ", overlapRings ", o.overlapRings, ")");
+        fail("segmentFace: options out of range (clusters ", o.clusters, ", minVertices ", o.minVertices, ", maxVertices ", o.maxVertices,
+            ", overlapRings ", o.overlapRings, ")");
 
     Eigen::MatrixXd P = mean.V;
     if (o.mirror)
@@ -170,8 +168,9 @@ Segmentation segmentFace(const Mesh& mean, int noseTip, const SegmentationOption
                     outer.push_back(u);
         std::sort(outer.begin(), outer.end());
         outer.erase(std::unique(outer.begin(), outer.end()), outer.end());
-        const std::vector<int> ring =
-            r > 0 ? ringDistance(next, outer, [&](int v) { return !inCore(v); }, r) : std::vector<int>(next.size(), 0);
+        const std::vector<int> ring = r > 0 ? ringDistance(
+                                          next, outer, [&](int v) { return !inCore(v); }, r)
+                                            : std::vector<int>(next.size(), 0);
 
         std::vector<int>& members = seg.vertices.emplace_back();
         for (Eigen::Index v = 0; v < nv; ++v) {

@@ -25,7 +25,7 @@ Mesh bump(double A, double s, int n, double size)
 // A camera looking down -z at the xy plane (azimuth 0 looks along -z in our convention).
 Camera topCamera(int size = 512)
 {
-    return frameSphere({0, 0, 0}, 45.0, {0, 0}, size, size);
+    return frameSphere({ 0, 0, 0 }, 45.0, { 0, 0 }, size, size);
 }
 
 } // namespace
@@ -38,8 +38,8 @@ TEST_CASE("candidates: the silhouette of a sphere is the band |n.v| < threshold"
     p.silhouetteThreshold = defaultSilhouetteThreshold(sphere.V.rows());
     p.suggestiveThreshold = 1e30; // silhouettes only
     p.featureSize = meanEdgeLength(sphere);
-    const Camera camera = frameSphere({0, 0, 0}, 10.0, {0, 0}, 256, 256);
-    const std::vector<Candidate> cands = contourCandidates({sphere}, {c}, {}, camera, p);
+    const Camera camera = frameSphere({ 0, 0, 0 }, 10.0, { 0, 0 }, 256, 256);
+    const std::vector<Candidate> cands = contourCandidates({ sphere }, { c }, {}, camera, p);
     long expected = 0;
     for (Eigen::Index v = 0; v < sphere.V.rows(); ++v)
         expected += std::abs(sphere.V(v, 2) / 10.0) < p.silhouetteThreshold;
@@ -62,7 +62,7 @@ TEST_CASE("candidates: the suggestive contour of a bump seen from above is its i
     p.silhouetteThreshold = 0.0;
     p.suggestiveThreshold = 1e-3;
     p.featureSize = meanEdgeLength(m);
-    const std::vector<Candidate> cands = contourCandidates({m}, {c}, {}, topCamera(), p);
+    const std::vector<Candidate> cands = contourCandidates({ m }, { c }, {}, topCamera(), p);
     REQUIRE(cands.size() > 40);
     int octants[8] = {};
     for (const Candidate& cand : cands) {
@@ -86,8 +86,8 @@ TEST_CASE("candidates: from below, the bump shows no suggestive contour (it is b
     p.silhouetteThreshold = 0.0;
     p.suggestiveThreshold = 1e-3;
     p.featureSize = meanEdgeLength(m);
-    const Camera below = frameSphere({0, 0, 0}, 45.0, {180, 0}, 256, 256);
-    REQUIRE(contourCandidates({m}, {c}, {}, below, p).empty());
+    const Camera below = frameSphere({ 0, 0, 0 }, 45.0, { 180, 0 }, 256, 256);
+    REQUIRE(contourCandidates({ m }, { c }, {}, below, p).empty());
 }
 
 TEST_CASE("candidates: labelled and excluded vertices, and culling by rectangle and sphere")
@@ -108,30 +108,28 @@ TEST_CASE("candidates: labelled and excluded vertices, and culling by rectangle 
     p.silhouetteThreshold = 0.1;
     p.suggestiveThreshold = 1e30;
     p.featureSize = 1;
-    const Camera camera = frameSphere({0, 0, 0}, 10.0, {0, 0}, 256, 256);
-    std::vector<Candidate> cands = contourCandidates({sphere}, {c}, flags, camera, p);
-    auto has = [&](Eigen::Index v) {
-        return std::any_of(cands.begin(), cands.end(), [&](const Candidate& x) { return x.vertex == v; });
-    };
-    REQUIRE(has(front));  // labelled and facing the camera
-    REQUIRE(!has(back));  // labelled but facing away
+    const Camera camera = frameSphere({ 0, 0, 0 }, 10.0, { 0, 0 }, 256, 256);
+    std::vector<Candidate> cands = contourCandidates({ sphere }, { c }, flags, camera, p);
+    auto has = [&](Eigen::Index v) { return std::any_of(cands.begin(), cands.end(), [&](const Candidate& x) { return x.vertex == v; }); };
+    REQUIRE(has(front)); // labelled and facing the camera
+    REQUIRE(!has(back)); // labelled but facing away
     const size_t all = cands.size();
 
     flags[cands[0].vertex] |= VertexExcluded;
-    cands = contourCandidates({sphere}, {c}, flags, camera, p);
+    cands = contourCandidates({ sphere }, { c }, flags, camera, p);
     REQUIRE(cands.size() == all - 1);
 
     p.rect[0] = 0;
     p.rect[1] = 0;
     p.rect[2] = 128;
     p.rect[3] = 256; // the left half of the image
-    cands = contourCandidates({sphere}, {c}, flags, camera, p);
+    cands = contourCandidates({ sphere }, { c }, flags, camera, p);
     REQUIRE(!cands.empty());
     for (const Candidate& x : cands)
         REQUIRE(x.screen[0] <= 128);
     p.sphere[0] = -10;
     p.sphere[3] = 5; // near the leftmost point of the sphere
-    for (const Candidate& x : contourCandidates({sphere}, {c}, flags, camera, p))
+    for (const Candidate& x : contourCandidates({ sphere }, { c }, flags, camera, p))
         REQUIRE(std::hypot(x.world[0] + 10, x.world[1], x.world[2]) <= 5);
 }
 

@@ -1,5 +1,5 @@
-#include "contours/candidates.h"
 #include "contours/candidates_gpu.h"
+#include "contours/candidates.h"
 #include "contours/curvature_gpu.h"
 #include "geometry/primitives.h"
 #include "test_common.h"
@@ -69,7 +69,7 @@ std::vector<Curvature> curvatureFromGpu(const GpuCurvature::Result& r, size_t me
 }
 
 void compareWithReference(const Batch& batch, GpuCurvature& curvature, GpuCandidates& gpu, const std::vector<std::uint32_t>& flags,
-                          const Camera& camera, const ContourParams& params)
+    const Camera& camera, const ContourParams& params)
 {
     const Eigen::Index nv = batch.meshes[0].V.rows();
     const std::vector<Curvature> curv = curvatureFromGpu(curvature.download(), batch.meshes.size(), nv);
@@ -82,7 +82,7 @@ void compareWithReference(const Batch& batch, GpuCurvature& curvature, GpuCandid
     while (i < cpu.size() || j < got.size()) {
         if (i < cpu.size() && j < got.size() && cpu[i].mesh == got[j].mesh && cpu[i].vertex == got[j].vertex) {
             const bool sameTypes = cpu[i].types == got[j].types;
-            if (!sameTypes && !tieSet.count({cpu[i].mesh, cpu[i].vertex}))
+            if (!sameTypes && !tieSet.count({ cpu[i].mesh, cpu[i].vertex }))
                 FAIL("mesh " << cpu[i].mesh << " vertex " << cpu[i].vertex << ": cpu types " << cpu[i].types << " gpu " << got[j].types);
             tied += !sameTypes;
             for (int k = 0; k < 2; ++k)
@@ -95,8 +95,9 @@ void compareWithReference(const Batch& batch, GpuCurvature& curvature, GpuCandid
         // Only one side has it: allowed only at a documented threshold tie.
         const bool cpuFirst = j >= got.size() || (i < cpu.size() && cpu[i] < got[j]);
         const Candidate& only = cpuFirst ? cpu[i] : got[j];
-        if (!tieSet.count({only.mesh, only.vertex}))
-            FAIL((cpuFirst ? "only the CPU" : "only the GPU") << " has mesh " << only.mesh << " vertex " << only.vertex << " types " << only.types);
+        if (!tieSet.count({ only.mesh, only.vertex }))
+            FAIL((cpuFirst ? "only the CPU" : "only the GPU")
+                << " has mesh " << only.mesh << " vertex " << only.vertex << " types " << only.types);
         ++tied;
         (cpuFirst ? i : j)++;
     }
@@ -128,7 +129,7 @@ TEST_CASE("candidates_gpu: the cloud equals the CPU reference, orthographic and 
 
     SECTION("orthographic, whole view")
     {
-        compareWithReference(batch, curvature, gpu, flags, frameMesh(batch.meshes[0], {0, 40}, 640, 480), params);
+        compareWithReference(batch, curvature, gpu, flags, frameMesh(batch.meshes[0], { 0, 40 }, 640, 480), params);
         // The vertices facing away in all four tori were left out (normal cones), and the
         // cloud still equals the reference.
         REQUIRE(gpu.listedVertices() < nv * 9 / 10);
@@ -141,8 +142,8 @@ TEST_CASE("candidates_gpu: the cloud equals the CPU reference, orthographic and 
         params.rect[3] = 400;
         params.sphere[0] = 20;
         params.sphere[3] = 35;
-        compareWithReference(batch, curvature, gpu, flags,
-                             frameMesh(batch.meshes[0], {30, 25}, 640, 480, Projection::Perspective), params);
+        compareWithReference(
+            batch, curvature, gpu, flags, frameMesh(batch.meshes[0], { 30, 25 }, 640, 480, Projection::Perspective), params);
         REQUIRE(gpu.listedVertices() < nv);
     }
     REQUIRE_NO_VALIDATION_MESSAGES();
@@ -164,7 +165,7 @@ TEST_CASE("candidates_gpu: 70 faces, more than one pass-1 invocation per vertex 
     params.silhouetteThreshold = defaultSilhouetteThreshold(nv);
     params.suggestiveThreshold = 0.005;
     params.featureSize = meanEdgeLength(batch.meshes[0]);
-    const Camera camera = frameMesh(batch.meshes[0], {20, 35}, 640, 480, Projection::Perspective);
+    const Camera camera = frameMesh(batch.meshes[0], { 20, 35 }, 640, 480, Projection::Perspective);
     compareWithReference(batch, curvature, gpu, flags, camera, params);
     std::set<std::uint32_t> meshes;
     for (const Candidate& c : gpu.build(camera, params))
@@ -185,7 +186,7 @@ TEST_CASE("candidates_gpu: a cloud larger than the first buffer grows it and sta
     ContourParams params;
     params.suggestiveThreshold = 1e30;
     params.featureSize = 1;
-    const Camera camera = frameMesh(batch.meshes[0], {0, 90}, 256, 256);
+    const Camera camera = frameMesh(batch.meshes[0], { 0, 90 }, 256, 256);
     const std::vector<Candidate> got = gpu.build(camera, params);
     const std::vector<Candidate> again = gpu.build(camera, params);
     REQUIRE(got.size() > static_cast<size_t>(2 * nv / 16)); // beyond the initial capacity
@@ -211,13 +212,12 @@ TEST_CASE("candidates_gpu: a stroke's box gives exactly the whole view's candida
     whole.silhouetteThreshold = defaultSilhouetteThreshold(nv);
     whole.suggestiveThreshold = 0.005;
     whole.featureSize = meanEdgeLength(batch.meshes[0]);
-    for (const Projection kind : {Projection::Perspective, Projection::Orthographic}) {
-        const Camera camera = frameMesh(batch.meshes[0], {20, 35}, 640, 480, kind);
-        const Camera other = frameMesh(batch.meshes[0], {200, -30}, 640, 480, kind);
+    for (const Projection kind : { Projection::Perspective, Projection::Orthographic }) {
+        const Camera camera = frameMesh(batch.meshes[0], { 20, 35 }, 640, 480, kind);
+        const Camera other = frameMesh(batch.meshes[0], { 200, -30 }, 640, 480, kind);
         const std::vector<Candidate> all = gpu.build(camera, whole);
         auto inside = [](const Candidate& c, const ContourParams& box) {
-            return c.screen[0] >= box.rect[0] && c.screen[0] <= box.rect[2] && c.screen[1] >= box.rect[1] &&
-                   c.screen[1] <= box.rect[3];
+            return c.screen[0] >= box.rect[0] && c.screen[0] <= box.rect[2] && c.screen[1] >= box.rect[1] && c.screen[1] <= box.rect[3];
         };
         auto check = [&](double x, double y, double halfWidth, double halfHeight) {
             ContourParams box = whole;
@@ -231,8 +231,7 @@ TEST_CASE("candidates_gpu: a stroke's box gives exactly the whole view's candida
                     expected.push_back(c);
             gpu.build(other, whole); // leaves every vertex's radial curvature of another view
             const std::vector<Candidate> got = gpu.build(camera, box);
-            INFO(all.size() << " candidates in the whole view, " << expected.size() << " in the box around (" << x << ", "
-                            << y << ")");
+            INFO(all.size() << " candidates in the whole view, " << expected.size() << " in the box around (" << x << ", " << y << ")");
             REQUIRE(got.size() == expected.size());
             for (size_t i = 0; i < got.size(); ++i) {
                 REQUIRE(got[i].mesh == expected[i].mesh);

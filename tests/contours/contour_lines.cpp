@@ -13,12 +13,12 @@ TEST_CASE("contour_lines: a sphere's silhouette from the front is its equator ci
     const Curvature c = estimateCurvature(sphere);
     ContourParams p;
     p.suggestiveThreshold = 1e30;
-    const ContourLines lines = contourLines(sphere, c, frameSphere({0, 0, 0}, 10, {0, 0}, 256, 256), p);
+    const ContourLines lines = contourLines(sphere, c, frameSphere({ 0, 0, 0 }, 10, { 0, 0 }, 256, 256), p);
     REQUIRE(lines.silhouette.size() >= 2 * 100);
     REQUIRE(lines.suggestive.empty());
     double length = 0;
     for (size_t i = 0; i < lines.silhouette.size(); i += 2) {
-        for (const glm::vec3& q : {lines.silhouette[i], lines.silhouette[i + 1]}) {
+        for (const glm::vec3& q : { lines.silhouette[i], lines.silhouette[i + 1] }) {
             REQUIRE(std::abs(q.z) < 0.05);
             REQUIRE(std::hypot(q.x, q.y) == Approx(10.0).epsilon(0.01));
         }
@@ -36,11 +36,11 @@ TEST_CASE("contour_lines: the suggestive line of a bump from above is its inflec
     ContourParams p;
     p.suggestiveThreshold = 1e-3;
     p.featureSize = meanEdgeLength(m);
-    const ContourLines lines = contourLines(m, c, frameSphere({0, 0, 0}, 45, {0, 0}, 256, 256), p);
+    const ContourLines lines = contourLines(m, c, frameSphere({ 0, 0, 0 }, 45, { 0, 0 }, 256, 256), p);
     REQUIRE(lines.suggestive.size() > 40);
     double length = 0;
     for (size_t i = 0; i < lines.suggestive.size(); i += 2) {
-        for (const glm::vec3& q : {lines.suggestive[i], lines.suggestive[i + 1]})
+        for (const glm::vec3& q : { lines.suggestive[i], lines.suggestive[i + 1] })
             REQUIRE(std::abs(std::hypot(q.x, q.y) - 8.0) < 0.1);
         length += glm::length(lines.suggestive[i + 1] - lines.suggestive[i]);
     }
@@ -52,7 +52,7 @@ TEST_CASE("contour_lines: labelled paths facing the camera, excluded triangles, 
     const Mesh sphere = makeIcosphere(10.0, 2);
     const Curvature c = estimateCurvature(sphere);
     ContourParams p;
-    const Camera camera = frameSphere({0, 0, 0}, 10, {0, 0}, 128, 128);
+    const Camera camera = frameSphere({ 0, 0, 0 }, 10, { 0, 0 }, 128, 128);
     Eigen::Index front = 0, back = 0;
     for (Eigen::Index v = 0; v < sphere.V.rows(); ++v) {
         front = sphere.V(v, 2) > sphere.V(front, 2) ? v : front;
@@ -63,12 +63,12 @@ TEST_CASE("contour_lines: labelled paths facing the camera, excluded triangles, 
         for (int k = 0; k < 3; ++k)
             if (sphere.F(t, k) == front)
                 neighbour = sphere.F(t, (k + 1) % 3);
-    std::map<std::string, std::vector<int>> paths = {{"front", {int(front), neighbour}}, {"back", {int(back), int(back)}}};
+    std::map<std::string, std::vector<int>> paths = { { "front", { int(front), neighbour } }, { "back", { int(back), int(back) } } };
     ContourLines lines = contourLines(sphere, c, camera, p, {}, paths);
     REQUIRE(lines.labelled.size() == 2); // the back path faces away
     std::vector<std::uint32_t> flags(sphere.V.rows(), VertexExcluded);
     lines = contourLines(sphere, c, camera, p, flags);
     REQUIRE(lines.silhouette.empty());
-    paths["bad"] = {0, 100000};
+    paths["bad"] = { 0, 100000 };
     REQUIRE_THROWS_WITH(contourLines(sphere, c, camera, p, {}, paths), Catch::Contains("'bad' has vertex 100000"));
 }

@@ -51,7 +51,7 @@ TEST_CASE("curvature: torus matches the closed form, and so does the curvature d
     for (Eigen::Index vi = 0; vi < torus.V.rows(); ++vi) {
         const double v = 2 * M_PI * (vi % tube) / tube, u = 2 * M_PI * (vi / tube) / ring;
         const double kTube = 1 / r, kRing = std::cos(v) / (R + r * std::cos(v));
-        worstK = std::max({worstK, std::abs(c.k1[vi] - kTube), std::abs(c.k2[vi] - kRing)});
+        worstK = std::max({ worstK, std::abs(c.k1[vi] - kTube), std::abs(c.k2[vi] - kRing) });
 
         // C(x, x, x) for a tangent x is frame independent: 3 x_v x_u^2 dk_ring/ds with e_v
         // along increasing v (surface of revolution: meridians are geodesics, so the only
@@ -60,7 +60,7 @@ TEST_CASE("curvature: torus matches the closed form, and so does the curvature d
         const Eigen::RowVector3d ev(-std::sin(v) * std::cos(u), -std::sin(v) * std::sin(u), std::cos(v));
         const double dkRing = -R * std::sin(v) / (r * std::pow(R + r * std::cos(v), 2));
         maxC = std::max(maxC, std::abs(dkRing));
-        for (double angle : {0.3, 1.1, 2.0}) {
+        for (double angle : { 0.3, 1.1, 2.0 }) {
             const Eigen::RowVector3d x = std::cos(angle) * eu + std::sin(angle) * ev;
             const double expected = 3 * x.dot(ev) * std::pow(x.dot(eu), 2) * dkRing;
             const double a = x.dot(c.dir1.row(vi)), b = x.dot(c.dir2.row(vi));

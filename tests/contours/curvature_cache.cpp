@@ -30,7 +30,7 @@ std::vector<Candidate> cloudOf(GpuCurvature& curvature, const Mesh& first)
     params.silhouetteThreshold = defaultSilhouetteThreshold(first.V.rows());
     params.suggestiveThreshold = 0.005;
     params.featureSize = meanEdgeLength(first);
-    return gpu.build(frameMesh(first, {30, 20}, 320, 240, Projection::Perspective), params);
+    return gpu.build(frameMesh(first, { 30, 20 }, 320, 240, Projection::Perspective), params);
 }
 
 bool same(const std::vector<Candidate>& a, const std::vector<Candidate>& b)
@@ -85,7 +85,7 @@ TEST_CASE("curvature_cache: the second run reads the file and gives the same clo
     CHECK(curvatureCacheKey(F, moved) != curvatureCacheKey(F, positions));
 
     // A flipped byte in the payload, then a truncated file: recomputed, noted, replaced.
-    for (const char* damage : {"flip", "truncate"}) {
+    for (const char* damage : { "flip", "truncate" }) {
         INFO(damage);
         {
             std::fstream f(first.file, std::ios::in | std::ios::out | std::ios::binary);

@@ -1,5 +1,5 @@
-#include "contours/curvature.h"
 #include "contours/curvature_gpu.h"
+#include "contours/curvature.h"
 #include "core/error.h"
 #include "geometry/mesh_batch.h"
 #include "geometry/primitives.h"
@@ -73,9 +73,11 @@ TEST_CASE("curvature_gpu: matches the double-precision CPU reference on a batch 
             const Eigen::Matrix3d gpuII = secondForm(k1, k2, d1, d2);
             const Eigen::Matrix3d cpuII = secondForm(c.k1[v], c.k2[v], c.dir1.row(v).transpose(), c.dir2.row(v).transpose());
             worstK = std::max(worstK, (gpuII - cpuII).cwiseAbs().maxCoeff() / kScale);
-            for (double angle : {0.0, 0.7, 1.9}) {
+            for (double angle : { 0.0, 0.7, 1.9 }) {
                 const Eigen::Vector3d x = std::cos(angle) * c.dir1.row(v).transpose() + std::sin(angle) * c.dir2.row(v).transpose();
-                auto cubic = [](const float* d, double a, double b) { return d[0] * a * a * a + 3 * d[1] * a * a * b + 3 * d[2] * a * b * b + d[3] * b * b * b; };
+                auto cubic = [](const float* d, double a, double b) {
+                    return d[0] * a * a * a + 3 * d[1] * a * a * b + 3 * d[2] * a * b * b + d[3] * b * b * b;
+                };
                 const float* gd = &r.derivative[4 * i];
                 float cd[4];
                 for (int k = 0; k < 4; ++k)
@@ -130,7 +132,8 @@ TEST_CASE("curvature_gpu: the packed shape decodes to the full-precision values"
     for (Eigen::Index v = 0; v < torus.V.rows(); ++v) {
         const float* p = &r.packed[12 * v];
         for (int k = 0; k < 3; ++k) {
-            worstVector = std::max({worstVector, double(std::abs(p[k] - r.normal[3 * v + k])), double(std::abs(p[3 + k] - r.direction[3 * v + k]))});
+            worstVector = std::max(
+                { worstVector, double(std::abs(p[k] - r.normal[3 * v + k])), double(std::abs(p[3 + k] - r.direction[3 * v + k])) });
         }
         for (int k = 0; k < 2; ++k)
             worstK = std::max(worstK, double(std::abs(p[6 + k] - r.curvature[4 * v + k]) / std::abs(r.curvature[4 * v + k])));
@@ -139,8 +142,8 @@ TEST_CASE("curvature_gpu: the packed shape decodes to the full-precision values"
     }
     INFO("unit vectors " << worstVector << ", curvature relative " << worstK << ", derivative excess " << worstC);
     REQUIRE(worstVector < 1e-4); // octahedral snorm16: about 3e-5
-    REQUIRE(worstK < 1e-3);        // half floats: 2^-11 relative
-    REQUIRE(worstC < 1e-7);        // half floats, down to their subnormal range
+    REQUIRE(worstK < 1e-3);      // half floats: 2^-11 relative
+    REQUIRE(worstC < 1e-7);      // half floats, down to their subnormal range
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
 
@@ -210,8 +213,8 @@ TEST_CASE("curvature_gpu: sign locks mark the vertices whose one-ring has k1 and
             bool expected = sign(m, v) != 0;
             for (std::uint32_t k = rings.offsets[v]; k < rings.offsets[v + 1]; ++k) {
                 const std::uint32_t u = rings.vertices[k];
-                const bool plane = r.packed[12 * (m * nv + u)] != 0 || r.packed[12 * (m * nv + u) + 1] != 0 ||
-                                   r.packed[12 * (m * nv + u) + 2] != 0; // else never read: no lock broken
+                const bool plane = r.packed[12 * (m * nv + u)] != 0 || r.packed[12 * (m * nv + u) + 1] != 0
+                    || r.packed[12 * (m * nv + u) + 2] != 0; // else never read: no lock broken
                 expected = expected && (!plane || sign(m, u) == sign(m, v));
             }
             const size_t i = v * meshCount + m; // batch layout

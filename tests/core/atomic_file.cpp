@@ -33,11 +33,11 @@ TEST_CASE("writeFileAtomically: a failing writer keeps the previous file intact"
     test::TempDir dir;
     writeFileAtomically(dir / "a.txt", [](std::ostream& out) { out << "version 1"; });
     REQUIRE_THROWS_AS(writeFileAtomically(dir / "a.txt",
-                                          [](std::ostream& out) {
-                                              out << "half of version 2";
-                                              fail("disk on fire");
-                                          }),
-                      Error);
+                          [](std::ostream& out) {
+                              out << "half of version 2";
+                              fail("disk on fire");
+                          }),
+        Error);
     REQUIRE(slurp(dir / "a.txt") == "version 1");
     int entries = 0;
     for (const auto& e : std::filesystem::directory_iterator(dir.path())) {

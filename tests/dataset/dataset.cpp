@@ -1,6 +1,6 @@
 // Dataset folders: atomic writing, opening with file checks, loading shapes.
-#include "core/error.h"
 #include "dataset/dataset.h"
+#include "core/error.h"
 #include "io/mesh_io.h"
 #include "test_common.h"
 
@@ -16,9 +16,9 @@ Manifest square(int samples)
     m.vertexCount = 4;
     m.topology.resize(2, 3);
     m.topology << 0, 1, 2, 0, 2, 3;
-    m.components = {{"skin", 0, 4}};
+    m.components = { { "skin", 0, 4 } };
     for (int i = 0; i < samples; ++i)
-        m.samples.push_back({cat("s", i), cat("s", i, ".ply"), i == 0 ? Role::Test : Role::Train});
+        m.samples.push_back({ cat("s", i), cat("s", i, ".ply"), i == 0 ? Role::Test : Role::Train });
     return m;
 }
 
@@ -64,11 +64,10 @@ TEST_CASE("dataset: a failure while writing leaves the old folder untouched and 
     test::TempDir dir;
     const Manifest m = square(1);
     writeDataset(dir / "set", m, [&](const fs::path& tmp) { writePly(tmp / "s0.ply", squareMesh(m, 1)); });
-    REQUIRE_THROWS_WITH(writeDataset(dir / "set", m, [](const fs::path&) { fail("generator broke"); }),
-                        Catch::Contains("generator broke"));
+    REQUIRE_THROWS_WITH(writeDataset(dir / "set", m, [](const fs::path&) { fail("generator broke"); }), Catch::Contains("generator broke"));
     // A listed file that was never written is caught before the rename.
     REQUIRE_THROWS_WITH(writeDataset(dir / "set", square(2), [&](const fs::path& tmp) { writePly(tmp / "s0.ply", squareMesh(m, 7)); }),
-                        Catch::Contains("samples[1].file: 's1.ply' does not exist"));
+        Catch::Contains("samples[1].file: 's1.ply' does not exist"));
     const Dataset d = openDataset(dir / "set");
     REQUIRE(loadMesh(d, "s0.ply").V(1, 0) == Approx(1.0));
     int entries = 0;

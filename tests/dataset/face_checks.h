@@ -16,8 +16,8 @@ namespace facesketch::dataset::checks {
 // For a pose, `reference` is the same face with only the pose's jaw rotation, and no
 // triangle may turn more than 90 degrees from it: the rigid jaw rotation is factored out, and
 // what remains (lids, brows, lips sliding) must never turn a triangle over.
-inline void requireClean(const FaceTopology& t, const Mesh& mesh, const Vertices& teethReference, const std::string& what,
-                         const Vertices* reference = nullptr)
+inline void requireClean(
+    const FaceTopology& t, const Mesh& mesh, const Vertices& teethReference, const std::string& what, const Vertices* reference = nullptr)
 {
     INFO(what);
     const auto degenerate = degenerateTriangles(mesh);
@@ -57,4 +57,3 @@ inline void requireClean(const FaceTopology& t, const Mesh& mesh, const Vertices
 }
 
 } // namespace facesketch::dataset::checks
-

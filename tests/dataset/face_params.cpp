@@ -34,8 +34,7 @@ TEST_CASE("face_params: Rng is the standard mt19937_64 stream with a portable no
 
 TEST_CASE("face_params: identities depend only on (seed, index) and vary")
 {
-    const FaceParams a = sampleFaceParams(3, 17), b = sampleFaceParams(3, 17), c = sampleFaceParams(3, 18),
-                     d = sampleFaceParams(4, 17);
+    const FaceParams a = sampleFaceParams(3, 17), b = sampleFaceParams(3, 17), c = sampleFaceParams(3, 18), d = sampleFaceParams(4, 17);
     REQUIRE(a.exex == b.exex);
     REQUIRE(a.detail.size() == b.detail.size());
     REQUIRE(a.detail.back().height == b.detail.back().height);

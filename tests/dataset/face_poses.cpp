@@ -1,6 +1,6 @@
 // The 36 poses: names, deformers doing what they say, and clean meshes in every pose.
-#include "core/error.h"
 #include "dataset/face_poses.h"
+#include "core/error.h"
 #include "face_checks.h"
 #include "test_common.h"
 
@@ -21,11 +21,10 @@ TEST_CASE("face_poses: neutral, 21 expressions and 14 visemes with unique names"
         REQUIRE(names.insert(r.name).second);
     }
     REQUIRE(visemes == 14);
-    for (const char* v : {"PP", "FF", "TH", "DD", "kk", "CH", "SS", "nn", "RR", "aa", "E", "I", "O", "U"})
+    for (const char* v : { "PP", "FF", "TH", "DD", "kk", "CH", "SS", "nn", "RR", "aa", "E", "I", "O", "U" })
         REQUIRE(names.count(std::string("viseme_") + v));
-    for (const char* e : {"anger", "disgust", "fear", "sadness", "surprise", "smile_closed", "smile_open", "pucker",
-                          "funnel", "jaw_open", "blink", "eyes_wide", "cheek_puff", "brow_raise", "brow_lower", "squint",
-                          "frown", "smile_left", "smile_right"})
+    for (const char* e : { "anger", "disgust", "fear", "sadness", "surprise", "smile_closed", "smile_open", "pucker", "funnel", "jaw_open",
+             "blink", "eyes_wide", "cheek_puff", "brow_raise", "brow_lower", "squint", "frown", "smile_left", "smile_right" })
         REQUIRE(names.count(e));
 }
 
@@ -40,7 +39,7 @@ TEST_CASE("face_poses: jaw opening carries lower lip, lower teeth and tongue, an
     const Manifest& m = t.labels;
     const Component& upper = *m.component("teeth_upper");
     REQUIRE((V.middleRows(upper.begin, upper.size()) - neutral.middleRows(upper.begin, upper.size())).norm() == 0);
-    for (const char* moving : {"teeth_lower", "tongue"}) {
+    for (const char* moving : { "teeth_lower", "tongue" }) {
         const Component& c = *m.component(moving);
         const double dropped = neutral.middleRows(c.begin, c.size()).col(1).mean() - V.middleRows(c.begin, c.size()).col(1).mean();
         INFO(moving);
@@ -72,7 +71,7 @@ TEST_CASE("face_poses: eyelids close over the eyeballs and brows move")
             browRaise = &r;
     }
     const Vertices closed = synthesizeFace(t, p, blink->actions);
-    for (const char* side : {"_l", "_r"}) {
+    for (const char* side : { "_l", "_r" }) {
         const int ps = m.landmarks.at(std::string("ps") + side), pi = m.landmarks.at(std::string("pi") + side);
         INFO(side);
         REQUIRE(neutral(ps, 1) - neutral(pi, 1) > 7);
@@ -87,7 +86,7 @@ TEST_CASE("face_poses: eyelids close over the eyeballs and brows move")
         REQUIRE(nearest < 3.0);
     }
     const Vertices raised = synthesizeFace(t, p, browRaise->actions);
-    for (const char* fdp : {"4.1", "4.2", "4.3", "4.4", "4.5", "4.6"}) {
+    for (const char* fdp : { "4.1", "4.2", "4.3", "4.4", "4.5", "4.6" }) {
         INFO(fdp);
         REQUIRE(raised(m.mpeg4.at(fdp), 1) - neutral(m.mpeg4.at(fdp), 1) > 3);
     }
@@ -107,12 +106,12 @@ void requireCleanPoses(Resolution r, int identities)
             FaceActions jawOnly;
             jawOnly.jawOpen = recipe.actions.jawOpen;
             const Vertices reference = synthesizeFace(t, p, jawOnly);
-            const Mesh mesh{synthesizeFace(t, p, recipe.actions), t.labels.topology};
+            const Mesh mesh { synthesizeFace(t, p, recipe.actions), t.labels.topology };
             const std::string what = cat(resolutionName(r), " face ", i, " pose ", recipe.name);
             checks::requireClean(t, mesh, neutral, what, &reference);
             // The jaw rotation alone (at most 18 degrees) turns no triangle over either.
             if (jawChecked.insert(jawOnly.jawOpen).second)
-                checks::requireClean(t, {reference, t.labels.topology}, neutral, what + " (jaw only)", &neutral);
+                checks::requireClean(t, { reference, t.labels.topology }, neutral, what + " (jaw only)", &neutral);
         }
     }
 }

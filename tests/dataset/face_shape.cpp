@@ -21,7 +21,7 @@ double distance(const Vertices& V, int a, int b)
 
 Mesh faceMesh(const FaceTopology& t, const FaceParams& p, const FaceActions& a = {})
 {
-    return {synthesizeFace(t, p, a), t.labels.topology};
+    return { synthesizeFace(t, p, a), t.labels.topology };
 }
 
 } // namespace
@@ -34,7 +34,7 @@ TEST_CASE("face_shape: population matches Farkas adult norms (means within 5%, S
     const auto& norms = farkasNorms();
     // Per norm and sex: sum and sum of squares of the measured distance.
     std::vector<double> sum[2], sum2[2];
-    int count[2] = {0, 0};
+    int count[2] = { 0, 0 };
     for (int s = 0; s < 2; ++s) {
         sum[s].assign(norms.size(), 0);
         sum2[s].assign(norms.size(), 0);
@@ -57,8 +57,8 @@ TEST_CASE("face_shape: population matches Farkas adult norms (means within 5%, S
             const double mean = sum[s][k] / count[s];
             const double sd = std::sqrt(std::max(0.0, sum2[s][k] / count[s] - mean * mean));
             const double normMean = s ? n.meanFemale : n.meanMale, normSd = s ? n.sdFemale : n.sdMale;
-            std::cout << "face_shape: " << n.name << (s ? " women" : " men") << ": mean " << mean << " (norm " << normMean
-                      << "), sd " << sd << " (norm " << normSd << ")\n";
+            std::cout << "face_shape: " << n.name << (s ? " women" : " men") << ": mean " << mean << " (norm " << normMean << "), sd " << sd
+                      << " (norm " << normSd << ")\n";
             INFO(n.name << (s ? " women" : " men") << ": mean " << mean << " vs " << normMean << ", sd " << sd << " vs " << normSd);
             REQUIRE(std::abs(mean - normMean) <= 0.05 * normMean);
             REQUIRE(sd >= normSd / 2);
@@ -84,7 +84,7 @@ TEST_CASE("face_shape: landmarks lie on the features they name")
         REQUIRE(m.contours.at("lip_upper_inner").back() == m.landmarks.at("ch_l"));
         REQUIRE(m.contours.at("lip_lower_inner").front() == m.landmarks.at("ch_r"));
         // ...and they are the lateral extremes of every lip contour.
-        for (const char* lip : {"lip_upper_inner", "lip_lower_inner", "lip_upper_outer", "lip_lower_outer"})
+        for (const char* lip : { "lip_upper_inner", "lip_lower_inner", "lip_upper_outer", "lip_lower_outer" })
             for (int v : m.contours.at(lip)) {
                 REQUIRE(V(v, 0) <= V(m.landmarks.at("ch_l"), 0) + 1e-9);
                 REQUIRE(V(v, 0) >= V(m.landmarks.at("ch_r"), 0) - 1e-9);
@@ -98,7 +98,7 @@ TEST_CASE("face_shape: landmarks lie on the features they name")
         REQUIRE(fissure > 7);
         REQUIRE(fissure < 14);
         // The vertical order of the midline landmarks.
-        const char* down[] = {"g", "n", "prn", "sn", "ls", "sto", "li", "pg", "gn"};
+        const char* down[] = { "g", "n", "prn", "sn", "ls", "sto", "li", "pg", "gn" };
         for (int k = 0; k + 1 < 9; ++k) {
             if (std::string(down[k]) == "n")
                 continue; // prn is below n, checked next
@@ -120,7 +120,7 @@ TEST_CASE("face_shape: landmarks lie on the features they name")
 TEST_CASE("face_shape: 100 low-resolution identities have no degenerate, flipped, folded or intersecting triangles")
 {
     const FaceTopology t = buildFaceTopology(Resolution::Low);
-    const Vertices teeth = synthesizeFace(t, FaceParams{});
+    const Vertices teeth = synthesizeFace(t, FaceParams {});
     for (int i = 0; i < 100; ++i)
         requireClean(t, faceMesh(t, sampleFaceParams(3, i)), teeth, cat("low face ", i));
 }
@@ -128,7 +128,7 @@ TEST_CASE("face_shape: 100 low-resolution identities have no degenerate, flipped
 TEST_CASE("face_shape: 12 high-resolution identities have no degenerate, flipped, folded or intersecting triangles")
 {
     const FaceTopology t = buildFaceTopology(Resolution::High);
-    const Vertices teeth = synthesizeFace(t, FaceParams{});
+    const Vertices teeth = synthesizeFace(t, FaceParams {});
     for (int i = 0; i < 12; ++i)
         requireClean(t, faceMesh(t, sampleFaceParams(3, i)), teeth, cat("high face ", i));
 }
@@ -150,7 +150,6 @@ TEST_CASE("face_shape: sampled faces are distinct")
                 b = static_cast<int>(j);
             }
         }
-    std::cout << "face_shape: smallest pairwise RMS distance of 250 faces: " << smallest << " mm (faces " << a << ", "
-              << b << ")\n";
+    std::cout << "face_shape: smallest pairwise RMS distance of 250 faces: " << smallest << " mm (faces " << a << ", " << b << ")\n";
     REQUIRE(smallest > 1.0);
 }

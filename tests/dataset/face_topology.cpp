@@ -27,8 +27,8 @@ std::map<std::pair<int, int>, int> edgeUse(const Triangles& F, int begin, int en
 
 TEST_CASE("face_topology: about 900, 6,000 and 25,000 vertices, all labels valid")
 {
-    const std::map<Resolution, std::pair<int, int>> expected = {
-        {Resolution::Low, {800, 1000}}, {Resolution::High, {5500, 6500}}, {Resolution::Ultra, {23000, 27000}}};
+    const std::map<Resolution, std::pair<int, int>> expected
+        = { { Resolution::Low, { 800, 1000 } }, { Resolution::High, { 5500, 6500 } }, { Resolution::Ultra, { 23000, 27000 } } };
     std::set<std::string> landmarkNames, contourNames;
     for (const auto& [r, range] : expected) {
         const FaceTopology t = buildFaceTopology(r);
@@ -65,10 +65,10 @@ TEST_CASE("face_topology: about 900, 6,000 and 25,000 vertices, all labels valid
         // Same resolution, same topology.
         REQUIRE(buildFaceTopology(r).labels.topology == m.topology);
     }
-    for (const char* name : {"prn", "ex_l", "ex_r", "en_l", "en_r", "al_l", "al_r", "ch_l", "ch_r", "sn", "sto", "pg", "gn", "n"})
+    for (const char* name : { "prn", "ex_l", "ex_r", "en_l", "en_r", "al_l", "al_r", "ch_l", "ch_r", "sn", "sto", "pg", "gn", "n" })
         REQUIRE(landmarkNames.count(name));
-    for (const char* name : {"eyebrow_l", "eyebrow_r", "lip_upper_outer", "lip_lower_outer", "nostril_l", "nostril_r",
-                             "eye_socket_l", "eye_socket_r"})
+    for (const char* name :
+        { "eyebrow_l", "eyebrow_r", "lip_upper_outer", "lip_lower_outer", "nostril_l", "nostril_r", "eye_socket_l", "eye_socket_r" })
         REQUIRE(contourNames.count(name));
 }
 
@@ -95,14 +95,14 @@ TEST_CASE("face_topology: eyeballs, teeth and tongue are closed, and the skin's 
         auto it = use.find(std::minmax(a, b));
         return it != use.end() && it->second == 1;
     };
-    for (const char* loop : {"eye_socket_l", "eye_socket_r"}) {
+    for (const char* loop : { "eye_socket_l", "eye_socket_r" }) {
         const auto& path = m.contours.at(loop);
         for (size_t i = 0; i < path.size(); ++i) {
             INFO(loop << " edge " << i);
             REQUIRE(isBoundary(path[i], path[(i + 1) % path.size()]));
         }
     }
-    for (const char* lip : {"lip_upper_inner", "lip_lower_inner"}) {
+    for (const char* lip : { "lip_upper_inner", "lip_lower_inner" }) {
         const auto& path = m.contours.at(lip);
         for (size_t i = 0; i + 1 < path.size(); ++i) {
             INFO(lip << " edge " << i);

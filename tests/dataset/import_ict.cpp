@@ -1,10 +1,10 @@
 // `import ict-facekit` on the real ICT Face Model Light. The model is never part of the
 // repository: tests read it from $FACESKETCH_ICT_DIR, else ../shared/datasets/ict-facekit
 // beside the source tree, and report themselves SKIPPED (a visible warning) when it is absent.
+#include "dataset/import_ict.h"
 #include "core/error.h"
 #include "dataset/dataset.h"
 #include "dataset/face_poses.h"
-#include "dataset/import_ict.h"
 #include "io/mesh_io.h"
 #include "test_common.h"
 
@@ -33,10 +33,10 @@ bool haveIct()
     return fs::is_regular_file(ictDir() / "FaceXModel" / "generic_neutral_mesh.obj");
 }
 
-#define REQUIRE_ICT_OR_SKIP()                                                                                       \
-    if (!haveIct()) {                                                                                               \
-        WARN("SKIPPED: no ICT-FaceKit at " << ictDir().string() << " (set FACESKETCH_ICT_DIR); test not run");      \
-        return;                                                                                                     \
+#define REQUIRE_ICT_OR_SKIP()                                                                                                              \
+    if (!haveIct()) {                                                                                                                      \
+        WARN("SKIPPED: no ICT-FaceKit at " << ictDir().string() << " (set FACESKETCH_ICT_DIR); test not run");                             \
+        return;                                                                                                                            \
     }
 
 fs::path recipes()
@@ -64,11 +64,11 @@ bool isEdgePath(const Triangles& F, const std::vector<int>& path, bool closed)
     std::set<std::pair<int, int>> edges;
     for (Eigen::Index f = 0; f < F.rows(); ++f)
         for (int k = 0; k < 3; ++k)
-            edges.insert({std::min(F(f, k), F(f, (k + 1) % 3)), std::max(F(f, k), F(f, (k + 1) % 3))});
+            edges.insert({ std::min(F(f, k), F(f, (k + 1) % 3)), std::max(F(f, k), F(f, (k + 1) % 3)) });
     const size_t n = path.size();
     for (size_t i = 0; i + (closed ? 0 : 1) < n; ++i) {
         const int a = path[i], b = path[(i + 1) % n];
-        if (!edges.count({std::min(a, b), std::max(a, b)}))
+        if (!edges.count({ std::min(a, b), std::max(a, b) }))
             return false;
     }
     return true;
@@ -119,11 +119,11 @@ TEST_CASE("import_ict: 10 identities put every landmark on its feature, in mm, w
     REQUIRE(d.manifest.units == "mm");
     const Component& skin = *d.manifest.component("skin");
     REQUIRE(skin.size() == 9409);
-    for (const char* c : {"eye_left", "eye_right", "teeth_upper", "teeth_lower", "gums", "tongue"})
+    for (const char* c : { "eye_left", "eye_right", "teeth_upper", "teeth_lower", "gums", "tongue" })
         REQUIRE(d.manifest.component(c));
     REQUIRE(d.manifest.mpeg4.size() == 46); // thesis 5.2: 40 skin, 4 tongue, 2 lower teeth
     const Component& tongue = *d.manifest.component("tongue");
-    for (const char* p : {"6.1", "6.2", "6.3", "6.4"})
+    for (const char* p : { "6.1", "6.2", "6.3", "6.4" })
         REQUIRE(tongue.contains(m.mpeg4.at(p)));
     for (const auto& [name, path] : m.contours) {
         INFO(name);
@@ -139,7 +139,7 @@ TEST_CASE("import_ict: 10 identities put every landmark on its feature, in mm, w
     for (int v : m.excluded)
         if (skin.contains(v))
             hiddenSkin.insert(v);
-    for (const char* ring : {"nostril_l", "nostril_r"})
+    for (const char* ring : { "nostril_l", "nostril_r" })
         for (int v : m.contours.at(ring))
             REQUIRE(!hiddenSkin.count(v));
     const std::set<int> all(m.excluded.begin(), m.excluded.end());
@@ -174,7 +174,7 @@ TEST_CASE("import_ict: 10 identities put every landmark on its feature, in mm, w
         INFO("prn is " << apart << " mm from the most forward vertex " << front << "; longest edge at prn " << edge);
         REQUIRE(apart < std::max(3.0, 1.05 * edge));
         // ch: the outer lip corners, the lip contour vertices of extreme x.
-        for (const char* lip : {"lip_upper_outer", "lip_lower_outer"}) {
+        for (const char* lip : { "lip_upper_outer", "lip_lower_outer" }) {
             double minX = 1e9, maxX = -1e9;
             for (int v : m.contours.at(lip)) {
                 minX = std::min(minX, V(v, 0));
@@ -208,7 +208,7 @@ TEST_CASE("import_ict: 10 identities put every landmark on its feature, in mm, w
         REQUIRE(V(L.at("os_l"), 1) > V(L.at("ps_l"), 1));
         // Nostril rings: each around its own nostril, below prn and beside sn, medial to its sbal.
         // ICT's nostril openings run up to about 21 mm forward from sbal (250 identities, seed 1).
-        for (int side : {1, -1}) {
+        for (int side : { 1, -1 }) {
             const std::string sfx = side > 0 ? "_l" : "_r";
             const std::vector<int>& ring = m.contours.at("nostril" + sfx);
             Eigen::RowVector3d centre = Eigen::RowVector3d::Zero();
@@ -217,8 +217,7 @@ TEST_CASE("import_ict: 10 identities put every landmark on its feature, in mm, w
                 centre += V.row(v) / static_cast<double>(ring.size());
                 far = std::max(far, (V.row(v) - V.row(L.at("sbal" + sfx))).norm());
             }
-            INFO("nostril" << sfx << ": " << ring.size() << " vertices, centroid (" << centre << "), farthest "
-                           << far << " mm from sbal");
+            INFO("nostril" << sfx << ": " << ring.size() << " vertices, centroid (" << centre << "), farthest " << far << " mm from sbal");
             REQUIRE(ring.size() >= 12);
             REQUIRE(side * centre(0) > 2);
             REQUIRE(side * centre(0) < side * V(L.at("sbal" + sfx), 0));
@@ -246,7 +245,7 @@ TEST_CASE("import_ict: 10 identities put every landmark on its feature, in mm, w
         REQUIRE(V(m.mpeg4.at("6.1"), 2) - V(m.mpeg4.at("6.2"), 2) > 15);
         REQUIRE(V(m.mpeg4.at("6.3"), 0) > 15);
         REQUIRE(V(m.mpeg4.at("6.4"), 0) < -15);
-        for (const char* border : {"6.3", "6.4"})
+        for (const char* border : { "6.3", "6.4" })
             REQUIRE(V(m.mpeg4.at("6.2"), 1) > V(m.mpeg4.at(border), 1));
     }
     // Distinct identities.
@@ -305,7 +304,7 @@ TEST_CASE("import_ict: poses move what they should")
     REQUIRE(least > 10);
     // Blink: upper lids come down to the lower lids.
     const Vertices blink = pose("blink");
-    for (const char* s : {"_l", "_r"}) {
+    for (const char* s : { "_l", "_r" }) {
         const double open = neutral(L.at(std::string("ps") + s), 1) - neutral(L.at(std::string("pi") + s), 1);
         const double shut = blink(L.at(std::string("ps") + s), 1) - blink(L.at(std::string("pi") + s), 1);
         REQUIRE(shut < 0.3 * open);

@@ -1,8 +1,8 @@
 // `import meshes`: a folder of meshes in correspondence becomes a dataset; bad input stops
 // with the file (and line) named and leaves no output folder behind.
+#include "dataset/import_meshes.h"
 #include "core/error.h"
 #include "dataset/dataset.h"
-#include "dataset/import_meshes.h"
 #include "io/mesh_io.h"
 #include "test_common.h"
 
@@ -52,14 +52,14 @@ TEST_CASE("import_meshes: a folder of OBJ and PLY meshes becomes a dataset in mm
     test::TempDir dir;
     writeFolder(dir / "in", 6);
     test::writeText(dir / "in" / "landmarks.json",
-                    R"({"units": "cm", "landmarks": {"prn": 40}, "mpeg4": {"9.3": 40},
+        R"({"units": "cm", "landmarks": {"prn": 40}, "mpeg4": {"9.3": 40},
                         "contours": {"eyebrow_l": [36, 37, 38]}, "excluded": [0, 1]})");
     const Manifest m = importMeshes(dir / "in", dir / "out");
     const Dataset d = openDataset(dir / "out");
     REQUIRE(d.manifest.samples.size() == 6);
     REQUIRE(d.manifest.samples[0].name == "face0");
     REQUIRE(d.manifest.landmarks.at("prn") == 40);
-    REQUIRE(d.manifest.contours.at("eyebrow_l") == std::vector<int>{36, 37, 38});
+    REQUIRE(d.manifest.contours.at("eyebrow_l") == std::vector<int> { 36, 37, 38 });
     REQUIRE(d.manifest.component("skin")->size() == 81);
     const Mesh face3 = loadMesh(d, d.manifest.samples[3].file);
     const Mesh original = grid(9, 1.3);

@@ -1,6 +1,6 @@
 // manifest.json: round trip and one failing case per validation rule, each naming its field.
-#include "core/error.h"
 #include "dataset/manifest.h"
+#include "core/error.h"
 #include "test_common.h"
 
 #include <fstream>
@@ -19,13 +19,13 @@ Manifest tiny()
     m.vertexCount = 6;
     m.topology.resize(2, 3);
     m.topology << 0, 1, 2, 0, 2, 3;
-    m.components = {{"skin", 0, 4}, {"eye_left", 4, 6}};
-    m.landmarks = {{"prn", 1}, {"ch_l", 2}};
-    m.mpeg4 = {{"9.3", 1}, {"8.3", 2}};
-    m.contours = {{"lip_upper_outer", {0, 1, 2}}};
-    m.excluded = {3};
-    m.samples = {{"a", "faces/a.ply", Role::Train}, {"b", "faces/b.ply", Role::Test}};
-    m.poses = {{"a", "smile", "poses/a/smile.ply"}};
+    m.components = { { "skin", 0, 4 }, { "eye_left", 4, 6 } };
+    m.landmarks = { { "prn", 1 }, { "ch_l", 2 } };
+    m.mpeg4 = { { "9.3", 1 }, { "8.3", 2 } };
+    m.contours = { { "lip_upper_outer", { 0, 1, 2 } } };
+    m.excluded = { 3 };
+    m.samples = { { "a", "faces/a.ply", Role::Train }, { "b", "faces/b.ply", Role::Test } };
+    m.poses = { { "a", "smile", "poses/a/smile.ply" } };
     return m;
 }
 
@@ -99,15 +99,18 @@ TEST_CASE("manifest: every bad field is rejected with its name")
     REQUIRE_THAT(errorWith("/up", "up"), Contains("up: 'up'"));
     REQUIRE_THAT(errorWith("/forward", "+y"), Contains("forward: '+y' is parallel to up"));
     REQUIRE_THAT(errorWith("/vertex_count", 0), Contains("vertex_count: 0 must be positive"));
-    REQUIRE_THAT(errorWith("/topology/1", nlohmann::json::array({0, 2, 7})), Contains("topology[1]: vertex 7 outside [0, 6)"));
-    REQUIRE_THAT(errorWith("/topology/1", nlohmann::json::array({0, 2, 2})), Contains("topology[1]: repeats a vertex"));
-    REQUIRE_THAT(errorWith("/topology/0", nlohmann::json::array({0, 2})), Contains("topology[0]: expected 3 vertex indices"));
-    REQUIRE_THAT(errorWith("/components/eye_left", nlohmann::json::array({3, 6})), Contains("components.eye_left: range [3, 6) overlaps components.skin"));
-    REQUIRE_THAT(errorWith("/components/eye_left", nlohmann::json::array({4, 9})), Contains("components.eye_left: range [4, 9) is empty or outside"));
+    REQUIRE_THAT(errorWith("/topology/1", nlohmann::json::array({ 0, 2, 7 })), Contains("topology[1]: vertex 7 outside [0, 6)"));
+    REQUIRE_THAT(errorWith("/topology/1", nlohmann::json::array({ 0, 2, 2 })), Contains("topology[1]: repeats a vertex"));
+    REQUIRE_THAT(errorWith("/topology/0", nlohmann::json::array({ 0, 2 })), Contains("topology[0]: expected 3 vertex indices"));
+    REQUIRE_THAT(errorWith("/components/eye_left", nlohmann::json::array({ 3, 6 })),
+        Contains("components.eye_left: range [3, 6) overlaps components.skin"));
+    REQUIRE_THAT(errorWith("/components/eye_left", nlohmann::json::array({ 4, 9 })),
+        Contains("components.eye_left: range [4, 9) is empty or outside"));
     REQUIRE_THAT(errorWith("/components/skin", missing), Contains("components.skin: missing"));
-    REQUIRE_THAT(errorWith("/contours/lip_upper_outer", nlohmann::json::array({1})), Contains("contours.lip_upper_outer: has 1 vertices"));
+    REQUIRE_THAT(
+        errorWith("/contours/lip_upper_outer", nlohmann::json::array({ 1 })), Contains("contours.lip_upper_outer: has 1 vertices"));
     REQUIRE_THAT(errorWith("/contours/lip_upper_outer/2", 6), Contains("contours.lip_upper_outer[2]: vertex 6 outside"));
-    REQUIRE_THAT(errorWith("/excluded", nlohmann::json::array({3, 3})), Contains("excluded[1]: vertex 3 listed twice"));
+    REQUIRE_THAT(errorWith("/excluded", nlohmann::json::array({ 3, 3 })), Contains("excluded[1]: vertex 3 listed twice"));
     REQUIRE_THAT(errorWith("/samples/1/role", "validation"), Contains("samples[1].role: role 'validation'"));
     REQUIRE_THAT(errorWith("/samples/1/name", "a"), Contains("samples[1].name: duplicate sample 'a'"));
     REQUIRE_THAT(errorWith("/samples/1/file", "../b.ply"), Contains("samples[1].file: '../b.ply' leaves the dataset folder"));

@@ -1,10 +1,10 @@
 // Shared-topology simplification: about N vertices, every labelled vertex kept, contours still
 // edge paths, the same subset in every sample.
+#include "dataset/simplify.h"
 #include "core/error.h"
 #include "dataset/dataset.h"
 #include "dataset/face_model.h"
 #include "dataset/face_params.h"
-#include "dataset/simplify.h"
 #include "dataset/synth.h"
 #include "io/mesh_io.h"
 #include "test_common.h"
@@ -23,7 +23,7 @@ std::set<std::pair<int, int>> edgeSet(const Triangles& F)
     for (Eigen::Index f = 0; f < F.rows(); ++f)
         for (int k = 0; k < 3; ++k) {
             const int a = F(f, k), b = F(f, (k + 1) % 3);
-            edges.insert({std::min(a, b), std::max(a, b)});
+            edges.insert({ std::min(a, b), std::max(a, b) });
         }
     return edges;
 }
@@ -35,7 +35,7 @@ TEST_CASE("simplify: about N vertices, every labelled vertex kept, contours stil
     const FaceTopology topology = buildFaceTopology(Resolution::High);
     const Manifest& m = topology.labels;
     const Vertices V = synthesizeFace(topology, sampleFaceParams(1, 0));
-    for (int target : {1500, 3000}) {
+    for (int target : { 1500, 3000 }) {
         const Simplification s = simplifyTopology(V, m, target);
         INFO("target " << target << ", got " << s.kept.size() << " of " << m.vertexCount);
         REQUIRE(std::abs(static_cast<int>(s.kept.size()) - target) < target / 10);
@@ -54,11 +54,11 @@ TEST_CASE("simplify: about N vertices, every labelled vertex kept, contours stil
             for (size_t i = 0; i < path.size(); ++i)
                 REQUIRE(s.kept[static_cast<size_t>(newPath[i])] == path[i]);
             for (size_t i = 0; i + 1 < path.size(); ++i) {
-                const std::pair<int, int> e{std::min(path[i], path[i + 1]), std::max(path[i], path[i + 1])};
+                const std::pair<int, int> e { std::min(path[i], path[i + 1]), std::max(path[i], path[i + 1]) };
                 if (!before.count(e))
                     continue; // not an edge in the original either
                 INFO(name << " edge " << i);
-                REQUIRE(after.count({std::min(newPath[i], newPath[i + 1]), std::max(newPath[i], newPath[i + 1])}));
+                REQUIRE(after.count({ std::min(newPath[i], newPath[i + 1]), std::max(newPath[i], newPath[i + 1]) }));
             }
         }
         for (const Component& c : out.components)

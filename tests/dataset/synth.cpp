@@ -1,7 +1,7 @@
 // `facesketch synth` datasets: roles, determinism (byte-identical), a valid dataset on disk.
+#include "dataset/synth.h"
 #include "core/error.h"
 #include "dataset/dataset.h"
-#include "dataset/synth.h"
 #include "test_common.h"
 
 #include <fstream>

@@ -1,14 +1,13 @@
+#include "evaluation/contour_eval.h"
 #include "core/error.h"
 #include "dataset/dataset.h"
 #include "dataset/synth.h"
-#include "evaluation/contour_eval.h"
 #include "model/head_model.h"
 #include "test_common.h"
 
 #include <iostream>
 
 using namespace facesketch;
-
 
 TEST_CASE("contour_eval: a held-out face's own contours rebuild it better than the mean face")
 {
@@ -26,7 +25,7 @@ TEST_CASE("contour_eval: a held-out face's own contours rebuild it better than t
     evaluation::ContourEvalData data;
     for (const dataset::Sample& s : d.manifest.samples) {
         const Mesh full = dataset::loadMesh(d, s.file);
-        const Mesh m{full.V.middleRows(skin->begin, skin->size()), skinF};
+        const Mesh m { full.V.middleRows(skin->begin, skin->size()), skinF };
         if (s.role == dataset::Role::Test) {
             data.testNames.push_back(s.name);
             data.testFaces.push_back(m);
@@ -40,7 +39,7 @@ TEST_CASE("contour_eval: a held-out face's own contours rebuild it better than t
     for (size_t i = 0; i < train.size(); ++i)
         shapes.row(static_cast<Eigen::Index>(i)) = dataset::flatten(train[i].V);
     stats::FaceModelOptions o;
-    o.components = {1, 2};
+    o.components = { 1, 2 };
     o.folds = 3;
     const stats::FaceModel model = stats::trainFaceModel(shapes, skinF, model::skinLandmark(d.manifest, "prn"), o);
 
@@ -49,7 +48,7 @@ TEST_CASE("contour_eval: a held-out face's own contours rebuild it better than t
     data.flags = evaluation::skinContourFlags(d.manifest);
 
     evaluation::ContourEvalOptions options;
-    options.views = {{"front", {0, 0}}, {"34", {45, 0}}};
+    options.views = { { "front", { 0, 0 } }, { "34", { 45, 0 } } };
     options.imageSize = 512;
     const auto results = evaluation::evaluateContours(test::device(), data, options);
     REQUIRE(results.size() == data.testFaces.size() * 2 * 3);

@@ -93,15 +93,15 @@ TEST_CASE("wedges: one-rings hold each edge neighbour once, ascending, on both e
     for (Eigen::Index t = 0; t < s.F.rows(); ++t)
         for (int r = 0; r < 3; ++r) {
             const auto a = static_cast<std::uint32_t>(s.F(t, r)), b = static_cast<std::uint32_t>(s.F(t, (r + 1) % 3));
-            edges.insert({a, b});
-            edges.insert({b, a});
+            edges.insert({ a, b });
+            edges.insert({ b, a });
         }
     std::set<std::pair<std::uint32_t, std::uint32_t>> listed;
     for (std::uint32_t v = 0; v + 1 < n.offsets.size(); ++v)
         for (std::uint32_t k = n.offsets[v]; k < n.offsets[v + 1]; ++k) {
             if (k > n.offsets[v])
                 REQUIRE(n.vertices[k - 1] < n.vertices[k]);
-            listed.insert({v, n.vertices[k]});
+            listed.insert({ v, n.vertices[k] });
         }
     REQUIRE(listed == edges);
     REQUIRE(n.vertices.size() == edges.size());

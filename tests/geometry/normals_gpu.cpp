@@ -1,6 +1,6 @@
+#include "geometry/normals_gpu.h"
 #include "core/error.h"
 #include "geometry/normals.h"
-#include "geometry/normals_gpu.h"
 #include "geometry/primitives.h"
 #include "test_common.h"
 
@@ -44,7 +44,7 @@ TEST_CASE("normals_gpu: reusing the kernel with a new, larger batch")
 {
     const Mesh s = makeIcosphere(1.0, 1);
     GpuNormals kernel(test::device(), s.F, s.V.rows());
-    for (int meshes : {1, 4}) {
+    for (int meshes : { 1, 4 }) {
         const std::vector<float> positions = bumpySpheres(s, meshes);
         kernel.setPositions(positions);
         kernel.run();

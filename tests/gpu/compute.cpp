@@ -1,6 +1,6 @@
+#include "gpu/compute.h"
 #include "core/error.h"
 #include "gpu/buffers.h"
-#include "gpu/compute.h"
 #include "shaders/normals_comp.h"
 #include "shaders/shared.h"
 #include "test_common.h"
@@ -23,7 +23,7 @@ TEST_CASE("compute: the workgroup size is read from the SPIR-V")
 
 TEST_CASE("compute: garbage is not mistaken for SPIR-V")
 {
-    const std::uint32_t garbage[8] = {1, 2, 3, 4, 5, 6, 7, 8};
+    const std::uint32_t garbage[8] = { 1, 2, 3, 4, 5, 6, 7, 8 };
     std::uint32_t size[3];
     REQUIRE_THROWS_AS(gpu::readLocalSize(gpu::shaderCode(garbage), size), Error);
 }
@@ -44,12 +44,12 @@ TEST_CASE("compute: a binding of the wrong kind is an error naming it, raised be
     gpu::Buffer buffer = gpu::createBuffer(d, 64, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
     gpu::TexelView view = gpu::createTexelView(d, buffer, VK_FORMAT_R32_UINT);
     REQUIRE(view.elements == 16);
-    const std::uint32_t constants[4] = {1, 1, 0, 0};
+    const std::uint32_t constants[4] = { 1, 1, 0, 0 };
     VkCommandBuffer cmd = gpu::beginOneShot(d);
-    REQUIRE_THROWS_WITH(gpu::dispatchRaw(d, cmd, p, 1, 1, 1, {&buffer, &view, &view, &buffer}, constants, sizeof(constants)),
-                        Catch::Contains("binding 0 needs a texel view"));
-    REQUIRE_THROWS_WITH(gpu::dispatchRaw(d, cmd, p, 1, 1, 1, {&view, &view, &view, &view}, constants, sizeof(constants)),
-                        Catch::Contains("binding 3 needs a buffer"));
+    REQUIRE_THROWS_WITH(gpu::dispatchRaw(d, cmd, p, 1, 1, 1, { &buffer, &view, &view, &buffer }, constants, sizeof(constants)),
+        Catch::Contains("binding 0 needs a texel view"));
+    REQUIRE_THROWS_WITH(gpu::dispatchRaw(d, cmd, p, 1, 1, 1, { &view, &view, &view, &view }, constants, sizeof(constants)),
+        Catch::Contains("binding 3 needs a buffer"));
     gpu::endOneShotAndWait(d, cmd); // nothing was recorded: an empty submission
     gpu::destroyTexelView(d, view);
     gpu::destroyBuffer(d, buffer);
@@ -61,15 +61,15 @@ TEST_CASE("compute: uniform and texel masks that overlap are refused")
 {
     gpu::Device& d = test::device();
     REQUIRE_THROWS_WITH(gpu::createComputeProgram(d, gpu::shaderCode(normals_comp), 4, 16, 1u, NORMALS_TEXEL_BINDINGS),
-                        Catch::Contains("both uniform and texel"));
+        Catch::Contains("both uniform and texel"));
 }
 
 TEST_CASE("buffers: a texel view must cover whole texels")
 {
     gpu::Device& d = test::device();
     gpu::Buffer buffer = gpu::createBuffer(d, 20, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-    REQUIRE_THROWS_WITH(gpu::createTexelView(d, buffer, VK_FORMAT_R32G32B32A32_UINT),
-                        Catch::Contains("20 bytes is not a whole number of 16-byte texels"));
+    REQUIRE_THROWS_WITH(
+        gpu::createTexelView(d, buffer, VK_FORMAT_R32G32B32A32_UINT), Catch::Contains("20 bytes is not a whole number of 16-byte texels"));
     REQUIRE_THROWS_WITH(gpu::createTexelView(d, buffer, VK_FORMAT_R8G8B8A8_UNORM), Catch::Contains("is not one of the 32-bit formats"));
     gpu::TexelView view = gpu::createTexelView(d, buffer, VK_FORMAT_R32_UINT);
     REQUIRE(view.elements == 5);
@@ -100,7 +100,7 @@ TEST_CASE("compute: a SPIR-V file reads back word for word, and a bad one is an 
     };
     REQUIRE_THAT(message(dir / "missing.spv"), Catch::Contains("missing.spv: cannot open"));
     REQUIRE_THAT(message(write("odd.spv", embedded.words, 10)), Catch::Contains("odd.spv: 10 bytes is not a whole number"));
-    const std::uint32_t garbage[8] = {1, 2, 3, 4, 5, 6, 7, 8};
+    const std::uint32_t garbage[8] = { 1, 2, 3, 4, 5, 6, 7, 8 };
     REQUIRE_THAT(message(write("garbage.spv", garbage, sizeof(garbage))), Catch::Contains("garbage.spv: not a SPIR-V module"));
     std::filesystem::remove_all(dir);
 }

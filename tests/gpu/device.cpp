@@ -1,5 +1,5 @@
-#include "gpu/buffers.h"
 #include "gpu/device.h"
+#include "gpu/buffers.h"
 #include "test_common.h"
 
 #include <cstdio>
@@ -9,8 +9,8 @@ using namespace facesketch;
 TEST_CASE("device: headless device with the validation layer active")
 {
     gpu::Device& d = test::device();
-    std::printf("device: %s (type %d), validation %s\n", d.name.c_str(), static_cast<int>(d.properties.deviceType),
-                d.validation ? "on" : "off");
+    std::printf(
+        "device: %s (type %d), validation %s\n", d.name.c_str(), static_cast<int>(d.properties.deviceType), d.validation ? "on" : "off");
     REQUIRE(d.device != VK_NULL_HANDLE);
     REQUIRE(d.validation);
     REQUIRE(d.messenger != VK_NULL_HANDLE);

@@ -1,6 +1,6 @@
+#include "io/mesh_io.h"
 #include "core/error.h"
 #include "geometry/primitives.h"
-#include "io/mesh_io.h"
 #include "test_common.h"
 
 #include <cstring>
@@ -31,8 +31,9 @@ TEST_CASE("mesh_io: OBJ, binary PLY and ASCII PLY round trips")
 TEST_CASE("mesh_io: OBJ polygons, negative indices and texture/normal forms")
 {
     test::TempDir dir;
-    test::writeText(dir / "q.obj", "# quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n"
-                                   "f 1/1/1 2/1/1 3/1/1 4/1/1\nf -4//1 -2//1 -1//1\n");
+    test::writeText(dir / "q.obj",
+        "# quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n"
+        "f 1/1/1 2/1/1 3/1/1 4/1/1\nf -4//1 -2//1 -1//1\n");
     const Mesh m = readMesh(dir / "q.obj");
     REQUIRE(m.V.rows() == 4);
     REQUIRE(m.F.rows() == 3);
@@ -51,7 +52,7 @@ TEST_CASE("mesh_io: malformed OBJ files name the file and line")
     bad("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", "4: face index 4 refers to no vertex");
     bad("v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n", "3: vertex coordinate y is nan");
     bad("v 0 0 0\nv 1 0 0\nv 0 1\nf 1 2 3\n", "3: vertex has 2 coordinates");
-    bad("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "4: face has 2 vertices");          // truncated face
+    bad("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "4: face has 2 vertices"); // truncated face
     bad("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", "4: face vertex 'x' is not an index");
     bad("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n", "4: face index 0 refers to no vertex");
     bad("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 1\n", "4: face repeats vertex 1");
@@ -70,8 +71,8 @@ TEST_CASE("mesh_io: malformed PLY files name the file and line or element")
     };
     bad(header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", ":13: face 0 has vertex index 3 outside [0, 3)");
     bad(header + "0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n", ":11: vertex 1 has non-finite y");
-    bad(header + "0 0 0\n1 0 0\n", ":12: file ends at vertex 2 of 3");                 // truncated
-    bad(header + "0 0 0\n1 0 0\n0 1 0\n3 0 1\n", ":13: face 0 has too few values");        // wrong count
+    bad(header + "0 0 0\n1 0 0\n", ":12: file ends at vertex 2 of 3");              // truncated
+    bad(header + "0 0 0\n1 0 0\n0 1 0\n3 0 1\n", ":13: face 0 has too few values"); // wrong count
     bad(header + "0 0 0\n1 0\n0 1 0\n3 0 1 2\n", ":11: vertex 1 has too few values");
     bad(header + "0 0 0 7\n1 0 0\n0 1 0\n3 0 1 2\n", ":10: vertex 0 has more values");
     bad("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n0\n", ": 'vertex' element lacks scalar x, y and z");

@@ -48,8 +48,8 @@ TEST_CASE("head_model: 15% random vertices of held-out synthetic faces give unde
     o.seed = 5;
     const ObserveScore s = evaluateObserve(t.model, t.testSkin, o);
     std::cout << "synthetic low, " << t.model.vertexCount() << " skin vertices, " << s.faces << " test faces, 15% random: "
-              << "mean " << s.meanError << " mm (max " << s.maxError << "), mean face " << s.meanFaceMeanError
-              << " mm (max " << s.meanFaceMaxError << ")\n";
+              << "mean " << s.meanError << " mm (max " << s.maxError << "), mean face " << s.meanFaceMeanError << " mm (max "
+              << s.meanFaceMaxError << ")\n";
     CHECK(s.measuredFraction > 0.12);
     CHECK(s.meanError < 0.5 * s.meanFaceMeanError);
 }
@@ -61,8 +61,8 @@ TEST_CASE("head_model: one feature region of about 15% of the vertices gives und
     o.region = model::featureRegion(t.dataset.manifest, t.model, "mouth_chin", 10.0);
     const double share = double(o.region.size()) / double(t.model.vertexCount());
     const ObserveScore s = evaluateObserve(t.model, t.testSkin, o);
-    std::cout << "synthetic low, region mouth_chin (" << 100.0 * share << "% of the vertices): mean " << s.meanError
-              << " mm (max " << s.maxError << "), mean face " << s.meanFaceMeanError << " mm\n";
+    std::cout << "synthetic low, region mouth_chin (" << 100.0 * share << "% of the vertices): mean " << s.meanError << " mm (max "
+              << s.maxError << "), mean face " << s.meanFaceMeanError << " mm\n";
     CHECK(share > 0.10);
     CHECK(share < 0.20);
     CHECK(s.meanError < 0.5 * s.meanFaceMeanError);
@@ -149,9 +149,8 @@ TEST_CASE("head_model: eyeballs stay in their sockets as the face changes")
         REQUIRE(head.vertexCount() == m.vertexCount);
         REQUIRE(head.F == m.topology);
         const Eigen::RowVectorXd rebuilt = dataset::flatten(head.V);
-        const Eigen::RowVectorXd followed =
-            dataset::flatten(assembleHead(t.model.head, t.model.meanFace, t.testSkin.row(f).transpose()).V);
-        for (const auto& [eye, ring] : {std::pair{"eye_left", "eye_socket_l"}, std::pair{"eye_right", "eye_socket_r"}}) {
+        const Eigen::RowVectorXd followed = dataset::flatten(assembleHead(t.model.head, t.model.meanFace, t.testSkin.row(f).transpose()).V);
+        for (const auto& [eye, ring] : { std::pair { "eye_left", "eye_socket_l" }, std::pair { "eye_right", "eye_socket_r" } }) {
             const std::vector<int> ball = range(*m.component(eye));
             const std::vector<int>& socket = m.contours.at(ring);
             const Eigen::RowVector3d truth = centroid(t.testHeads.row(f), ball) - centroid(t.testHeads.row(f), socket);
@@ -159,8 +158,8 @@ TEST_CASE("head_model: eyeballs stay in their sockets as the face changes")
             worst = std::max(worst, (got - truth).norm());
             followWorst = std::max(followWorst, (centroid(followed, ball) - centroid(followed, socket) - truth).norm());
             // Baseline: the eyeball left where it sits on the mean head.
-            const auto part = std::find_if(t.model.head.parts.begin(), t.model.head.parts.end(),
-                                           [&](const RigidPart& p) { return p.name == eye; });
+            const auto part
+                = std::find_if(t.model.head.parts.begin(), t.model.head.parts.end(), [&](const RigidPart& p) { return p.name == eye; });
             REQUIRE(part != t.model.head.parts.end());
             const Eigen::RowVector3d frozen = part->mean.colwise().mean() - centroid(t.testHeads.row(f), socket);
             frozenWorst = std::max(frozenWorst, (frozen - truth).norm());
@@ -168,9 +167,8 @@ TEST_CASE("head_model: eyeballs stay in their sockets as the face changes")
         }
     }
     std::cout << "synthetic low, eyeball centre to socket ring, worst over " << t.testHeads.rows()
-              << " faces and both eyes: " << followWorst << " mm on the true skin, " << worst
-              << " mm on the skin rebuilt from 15%, " << frozenWorst << " mm left at the mean head; sockets moved up to "
-              << ringMotion << " mm\n";
+              << " faces and both eyes: " << followWorst << " mm on the true skin, " << worst << " mm on the skin rebuilt from 15%, "
+              << frozenWorst << " mm left at the mean head; sockets moved up to " << ringMotion << " mm\n";
     CHECK(followWorst < kTolerance);
     CHECK(worst < kTolerance);
     CHECK(frozenWorst > 2.0 * kTolerance);
@@ -220,8 +218,8 @@ TEST_CASE("head_model: an ICT-FaceKit import observed at 15% at random or at one
     // The default clean-up and correlation dimensions: ICT's ~100 identity modes move the whole
     // face, and the joint model needs room for them.
     model::HeadModelOptions options = test::smallHeadOptions();
-    options.face.cleanUpDim = stats::FaceModelOptions{}.cleanUpDim;
-    options.face.correlationLatentDim = stats::FaceModelOptions{}.correlationLatentDim;
+    options.face.cleanUpDim = stats::FaceModelOptions {}.cleanUpDim;
+    options.face.correlationLatentDim = stats::FaceModelOptions {}.correlationLatentDim;
     const FaceModel model = model::trainHeadModel(ds, options);
     const Eigen::MatrixXd test = dataset::loadShapes(ds, dataset::Role::Test, "skin");
     REQUIRE(test.rows() >= 5);
@@ -237,9 +235,9 @@ TEST_CASE("head_model: an ICT-FaceKit import observed at 15% at random or at one
     o.reconstruct.correlation = Correlation::Off;
     const ObserveScore uncorrelated = evaluateObserve(model, test, o);
     std::cout << "ICT import, " << model.vertexCount() << " skin vertices, " << random.faces << " test faces: 15% random "
-              << random.meanError << " mm (max " << random.maxError << "); mouth_chin (" << 100.0 * share << "%) "
-              << region.meanError << " mm, thesis correlation " << thesis.meanError << " mm, without correlation "
-              << uncorrelated.meanError << " mm; mean face " << random.meanFaceMeanError << " mm\n";
+              << random.meanError << " mm (max " << random.maxError << "); mouth_chin (" << 100.0 * share << "%) " << region.meanError
+              << " mm, thesis correlation " << thesis.meanError << " mm, without correlation " << uncorrelated.meanError
+              << " mm; mean face " << random.meanFaceMeanError << " mm\n";
     CHECK(random.meanError < 0.5 * random.meanFaceMeanError);
     CHECK(share < 0.2);
     CHECK(region.meanError < 0.5 * region.meanFaceMeanError);

@@ -5,8 +5,8 @@
 #include "core/error.h"
 #include "trained.h"
 
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 
 using namespace facesketch;
 

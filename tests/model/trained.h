@@ -22,7 +22,7 @@ inline model::HeadModelOptions smallHeadOptions()
 {
     model::HeadModelOptions o;
     o.face.segmentation.clusters = 7;
-    o.face.components = {1, 2};
+    o.face.components = { 1, 2 };
     o.face.folds = 3;
     o.face.mppca.restarts = 1;
     o.face.latentDim = 8;

@@ -1,8 +1,8 @@
+#include "render/renderer.h"
 #include "core/error.h"
 #include "geometry/primitives.h"
 #include "io/png.h"
 #include "render/colormap.h"
-#include "render/renderer.h"
 #include "test_common.h"
 
 #include <cmath>
@@ -26,7 +26,7 @@ TEST_CASE("renderer: an orthographic unit sphere covers its predicted disc withi
     const Mesh sphere = makeIcosphere(1.0, 5);
     Renderer renderer(test::device(), size, size, 4);
     renderer.addMesh(sphere);
-    const Camera camera = frameSphere({0, 0, 0}, 1.0, parseView("front"), size, size, Projection::Orthographic, margin);
+    const Camera camera = frameSphere({ 0, 0, 0 }, 1.0, parseView("front"), size, size, Projection::Orthographic, margin);
     const Image image = renderer.render(camera);
     // Coverage counts MSAA-resolved pixels more than half covered (partially covered edge
     // pixels blend towards white).
@@ -51,7 +51,7 @@ TEST_CASE("renderer: the head light makes the sphere's centre brighter than its 
     const int size = 128;
     Renderer renderer(test::device(), size, size, 1);
     renderer.addMesh(makeIcosphere(1.0, 4));
-    const Image image = renderer.render(frameSphere({0, 0, 0}, 1.0, {0, 0}, size, size, Projection::Orthographic, 0.1));
+    const Image image = renderer.render(frameSphere({ 0, 0, 0 }, 1.0, { 0, 0 }, size, size, Projection::Orthographic, 0.1));
     const double r = size / 2.0 / 1.1;
     const int centre = luminance(image.at(size / 2, size / 2));
     const int rim = luminance(image.at(size / 2, static_cast<int>(size / 2 + 0.97 * r)));
@@ -64,10 +64,10 @@ TEST_CASE("renderer: camera conventions put +y at the top and, from the front, +
 {
     const int size = 64;
     Renderer renderer(test::device(), size, size, 1);
-    renderer.addPoints({{0, 0.8f, 0}, {0.8f, 0, 0}}, {{1, 0, 0, 1}, {0, 0, 1, 1}}, 5.0f);
-    const Camera camera = frameSphere({0, 0, 0}, 1.0, parseView("front"), size, size);
+    renderer.addPoints({ { 0, 0.8f, 0 }, { 0.8f, 0, 0 } }, { { 1, 0, 0, 1 }, { 0, 0, 1, 1 } }, 5.0f);
+    const Camera camera = frameSphere({ 0, 0, 0 }, 1.0, parseView("front"), size, size);
     const Image image = renderer.render(camera);
-    const glm::dvec3 top = camera.project({0, 0.8, 0}), right = camera.project({0.8, 0, 0});
+    const glm::dvec3 top = camera.project({ 0, 0.8, 0 }), right = camera.project({ 0.8, 0, 0 });
     REQUIRE(top.y < size / 2.0);
     REQUIRE(right.x > size / 2.0);
     const std::uint8_t* red = image.at(int(top.x), int(top.y));
@@ -81,10 +81,10 @@ TEST_CASE("renderer: lines are drawn where the camera projects them")
 {
     const int size = 64;
     Renderer renderer(test::device(), size, size, 1);
-    renderer.addLines({{-0.9f, 0.5f, 0}, {0.9f, 0.5f, 0}}, {{0, 1, 0, 1}});
-    const Camera camera = frameSphere({0, 0, 0}, 1.0, {0, 0}, size, size);
+    renderer.addLines({ { -0.9f, 0.5f, 0 }, { 0.9f, 0.5f, 0 } }, { { 0, 1, 0, 1 } });
+    const Camera camera = frameSphere({ 0, 0, 0 }, 1.0, { 0, 0 }, size, size);
     const Image image = renderer.render(camera);
-    const glm::dvec3 a = camera.project({-0.5, 0.5, 0}), b = camera.project({0.5, 0.5, 0});
+    const glm::dvec3 a = camera.project({ -0.5, 0.5, 0 }), b = camera.project({ 0.5, 0.5, 0 });
     int green = 0;
     for (int x = int(a.x); x <= int(b.x); ++x)
         for (int dy = -1; dy <= 1; ++dy) {
@@ -101,8 +101,8 @@ TEST_CASE("renderer: bad sizes and mismatched cameras are errors")
     REQUIRE_THROWS_AS(Renderer(test::device(), 0, 10), Error);
     REQUIRE_THROWS_AS(Renderer(test::device(), 10, 10, 2), Error);
     Renderer renderer(test::device(), 32, 32, 1);
-    REQUIRE_THROWS_WITH(renderer.render(frameSphere({0, 0, 0}, 1, {0, 0}, 64, 64)), Catch::Contains("camera is 64x64"));
-    REQUIRE_THROWS_AS(renderer.addLines({{0, 0, 0}}, {{1, 1, 1, 1}}), Error);
+    REQUIRE_THROWS_WITH(renderer.render(frameSphere({ 0, 0, 0 }, 1, { 0, 0 }, 64, 64)), Catch::Contains("camera is 64x64"));
+    REQUIRE_THROWS_AS(renderer.addLines({ { 0, 0, 0 } }, { { 1, 1, 1, 1 } }), Error);
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
 

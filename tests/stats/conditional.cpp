@@ -6,8 +6,8 @@
 #include "core/error.h"
 #include "synthetic.h"
 
-#include <catch2/catch.hpp>
 #include <Eigen/Geometry>
+#include <catch2/catch.hpp>
 #include <limits>
 
 using namespace facesketch;
@@ -30,14 +30,19 @@ Observations randomObservations(Random& random, const Eigen::VectorXd& t, Eigen:
     for (Eigen::Index v = 0; v < vertices; ++v) {
         const Eigen::Vector3d p = t.segment<3>(3 * v);
         switch (random.index(4)) {
-        case 0: obs.addVertex(v, p); break;
+        case 0:
+            obs.addVertex(v, p);
+            break;
         case 1: {
             const Eigen::Matrix<double, 2, 3> P = randomView(random);
             obs.addProjectedVertex(v, P, P * p + 0.1 * random.normalMatrix(2, 1));
             break;
         }
-        case 2: obs.addCoordinate(3 * v + random.index(3), p(0) + 0.2); break;
-        default: break;
+        case 2:
+            obs.addCoordinate(3 * v + random.index(3), p(0) + 0.2);
+            break;
+        default:
+            break;
         }
     }
     return obs;
@@ -86,7 +91,7 @@ TEST_CASE("conditional: the missing block follows thesis eq. 4.21 in precision f
     const Ppca model = randomPpca(random, d, 4, 2.0, 1.0, 0.4);
     const Eigen::VectorXd t = model.mean + random.normalMatrix(d, 1);
     // Vertices 0, 3, 4 and 8 observed; the rest missing.
-    const std::vector<Eigen::Index> seen = {0, 3, 4, 8};
+    const std::vector<Eigen::Index> seen = { 0, 3, 4, 8 };
     Observations obs;
     std::vector<Eigen::Index> o, m;
     for (Eigen::Index v = 0; v < d / 3; ++v) {
@@ -143,8 +148,8 @@ TEST_CASE("conditional: the winner is the component that drew the face")
         const Eigen::MatrixXd P = obs.denseP(60);
         for (int j = 0; j < 3; ++j) {
             const Ppca& cj = mixture.components[static_cast<size_t>(j)];
-            const double dense = denseLogDensity(obs.values(), P * cj.mean, P * denseCovariance(cj) * P.transpose()) +
-                                 std::log(mixture.priors(j));
+            const double dense
+                = denseLogDensity(obs.values(), P * cj.mean, P * denseCovariance(cj) * P.transpose()) + std::log(mixture.priors(j));
             CHECK(relativeDifference(result.components[static_cast<size_t>(j)].score(), dense) < 1e-9);
         }
         // The reconstruction is the winner's conditional mean, closer to the truth than its mean.
@@ -165,8 +170,8 @@ TEST_CASE("conditional: rejects overlapping, out-of-range and non-finite measure
     REQUIRE_THROWS_AS(condition(model, outside), Error);
 
     Observations obs;
-    REQUIRE_THROWS_WITH(obs.addVertex(2, Eigen::Vector3d(0.0, std::numeric_limits<double>::quiet_NaN(), 0.0)),
-                        Catch::Contains("xyz(1, 0)"));
+    REQUIRE_THROWS_WITH(
+        obs.addVertex(2, Eigen::Vector3d(0.0, std::numeric_limits<double>::quiet_NaN(), 0.0)), Catch::Contains("xyz(1, 0)"));
     Eigen::Matrix<double, 2, 3> skew;
     skew << 1, 0, 0, 1, 1, 0;
     REQUIRE_THROWS_WITH(obs.addProjectedVertex(0, skew, Eigen::Vector2d::Zero()), Catch::Contains("orthonormal"));

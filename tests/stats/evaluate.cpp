@@ -26,7 +26,7 @@ const Setup& setup()
         FaceModelOptions options;
         options.segmentation.clusters = 4;
         options.segmentation.minVertices = 30;
-        options.components = {1};
+        options.components = { 1 };
         options.latentDim = 6;
         options.cleanUpDim = 8;
         options.mppca.restarts = 1;
@@ -90,7 +90,7 @@ TEST_CASE("evaluate: rejects a bad fraction, region or face size")
     options.fraction = 0.0;
     REQUIRE_THROWS_WITH(evaluateObserve(s.model, s.test, options), Catch::Contains("fraction"));
     options.fraction = 0.5;
-    options.region = {kSide * kSide};
+    options.region = { kSide * kSide };
     REQUIRE_THROWS_WITH(evaluateObserve(s.model, s.test, options), Catch::Contains("region vertex"));
     REQUIRE_THROWS_AS(evaluateObserve(s.model, s.test.leftCols(9)), Error);
 }

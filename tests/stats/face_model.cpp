@@ -7,8 +7,8 @@
 #include "stats/random.h"
 #include "synthetic_faces.h"
 
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
 
@@ -24,7 +24,7 @@ FaceModelOptions smallOptions()
     options.segmentation.clusters = 6;
     options.segmentation.minVertices = 30;
     options.segmentation.maxVertices = 200;
-    options.components = {1, 2};
+    options.components = { 1, 2 };
     options.folds = 3;
     options.mppca.restarts = 2;
     options.latentDim = 6;
@@ -74,8 +74,7 @@ TEST_CASE("face_model: 15% of the vertices give under half the mean-face error")
     // and the joint model.
     const std::string table = describe(t.model);
     CHECK(std::count(table.begin(), table.end(), '\n') == t.model.segmentation.size() + 3);
-    CHECK(table.find("joint model: 1 components over " + std::to_string(t.model.meanFace.size()) + " coordinates") !=
-          std::string::npos);
+    CHECK(table.find("joint model: 1 components over " + std::to_string(t.model.meanFace.size()) + " coordinates") != std::string::npos);
     Random random(42);
     double modelError = 0.0, meanError = 0.0;
     for (Eigen::Index f = 0; f < t.test.rows(); ++f) {
@@ -130,8 +129,8 @@ TEST_CASE("face_model: correlation brings unmeasured segments closer to the trut
             bool held = false;
             for (int s = 0; s < seg.size(); ++s)
                 if (c.winners[static_cast<size_t>(s)] >= 0)
-                    held = held || std::binary_search(seg.vertices[static_cast<size_t>(s)].begin(),
-                                                      seg.vertices[static_cast<size_t>(s)].end(), v);
+                    held = held
+                        || std::binary_search(seg.vertices[static_cast<size_t>(s)].begin(), seg.vertices[static_cast<size_t>(s)].end(), v);
             if (!held)
                 unmeasured.push_back(v);
         }
@@ -142,8 +141,8 @@ TEST_CASE("face_model: correlation brings unmeasured segments closer to the trut
         without += meanVertexError(c.face, truth, unmeasured) / t.test.rows();
         meanError += meanVertexError(t.model.meanFace, truth, unmeasured) / t.test.rows();
     }
-    INFO(measured.size() << " vertices measured, " << scored << " scored: correlation joint " << joint << " mm, thesis "
-                         << thesis << " mm, off " << without << " mm, mean face " << meanError << " mm");
+    INFO(measured.size() << " vertices measured, " << scored << " scored: correlation joint " << joint << " mm, thesis " << thesis
+                         << " mm, off " << without << " mm, mean face " << meanError << " mm");
     CHECK(joint < 0.75 * without);
     CHECK(thesis < 0.75 * without);
 }
@@ -207,8 +206,7 @@ TEST_CASE("face_model: with joint correlation one region informs every segment")
         thesis += meanVertexError(reconstruct(t.model, obs, onThesis).face, truth) / t.test.rows();
         meanError += meanVertexError(t.model.meanFace, truth) / t.test.rows();
     }
-    INFO("whole face from the nose segment: joint " << joint << " mm, thesis " << thesis << " mm, mean face "
-                                                    << meanError << " mm");
+    INFO("whole face from the nose segment: joint " << joint << " mm, thesis " << thesis << " mm, mean face " << meanError << " mm");
     CHECK(joint < thesis);
     CHECK(joint < 0.5 * meanError);
     CHECK(parseCorrelation("thesis") == Correlation::Thesis);

@@ -61,8 +61,7 @@ TEST_CASE("kmeans: objective never increases and matches a direct computation")
     // Converged: every sample is at least as close to its own centre as to any other.
     for (Eigen::Index i = 0; i < X.rows(); ++i)
         for (Eigen::Index k = 0; k < 4; ++k)
-            CHECK((X.row(i) - r.centres.row(r.labels(i))).squaredNorm() <=
-                  (X.row(i) - r.centres.row(k)).squaredNorm() + 1e-9);
+            CHECK((X.row(i) - r.centres.row(r.labels(i))).squaredNorm() <= (X.row(i) - r.centres.row(k)).squaredNorm() + 1e-9);
 }
 
 TEST_CASE("kmeans: seeding takes the sample nearest the mean, then the farthest ones")
@@ -71,7 +70,7 @@ TEST_CASE("kmeans: seeding takes the sample nearest the mean, then the farthest 
     // it (sample 3), then -5 is 7 away from its nearest centre (sample 4).
     Eigen::MatrixXd X(5, 1);
     X << 0.0, 1.0, 2.0, 10.0, -5.0;
-    REQUIRE(kmedoidsSeeds(centredGram(X), 3) == std::vector<int>{2, 3, 4});
+    REQUIRE(kmedoidsSeeds(centredGram(X), 3) == std::vector<int> { 2, 3, 4 });
     // Duplicates are never picked twice.
     Eigen::MatrixXd same = Eigen::MatrixXd::Ones(4, 2);
     const std::vector<int> seeds = kmedoidsSeeds(centredGram(same), 4);
@@ -111,7 +110,7 @@ TEST_CASE("kmeans: recovers well-separated clusters exactly")
     for (Eigen::Index k = 0; k < 3; ++k)
         for (int i = 1; i < 25; ++i)
             REQUIRE(r.labels(k * 25 + i) == r.labels(k * 25));
-    REQUIRE(std::set<int>{r.labels(0), r.labels(25), r.labels(50)}.size() == 3);
+    REQUIRE(std::set<int> { r.labels(0), r.labels(25), r.labels(50) }.size() == 3);
     // With as many clusters as samples every sample is its own cluster and J = 0.
     const KMeansResult all = kmeans(X.topRows(6), 6);
     CHECK(all.objective.back() < 1e-9);

@@ -51,14 +51,14 @@ FaceModel randomModel()
     for (int s = 0; s < model.segmentation.size(); ++s) {
         const auto d = 3 * static_cast<Eigen::Index>(model.segmentation.vertices[static_cast<size_t>(s)].size());
         SegmentModel sm;
-        sm.mixture.components = {ppca(d, 2), ppca(d, 2)};
+        sm.mixture.components = { ppca(d, 2), ppca(d, 2) };
         sm.mixture.priors = Eigen::Vector2d(0.25, 0.75);
         sm.cleanUp = ppca(d, 3);
         sm.logLikelihood = -123.5 * (s + 1);
         latents += 3;
         model.segments.push_back(sm);
     }
-    model.correlation.components = {ppca(latents, 2)};
+    model.correlation.components = { ppca(latents, 2) };
     model.correlation.priors = Eigen::VectorXd::Ones(1);
     return model;
 }
@@ -66,7 +66,7 @@ FaceModel randomModel()
 std::string readBytes(const std::filesystem::path& path)
 {
     std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    return { std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>() };
 }
 
 void writeBytes(const std::filesystem::path& path, const std::string& bytes)
@@ -103,8 +103,8 @@ TEST_CASE("model_file: a saved model loads back bit for bit")
     // The payload is the stored doubles plus a few bytes of sizes per matrix.
     size_t doubles = model.meanFace.size();
     for (const SegmentModel& sm : model.segments)
-        doubles += 2 * (sm.mixture.components[0].W.size() + sm.mixture.components[0].mean.size()) +
-                   sm.cleanUp.W.size() + sm.cleanUp.mean.size();
+        doubles += 2 * (sm.mixture.components[0].W.size() + sm.mixture.components[0].mean.size()) + sm.cleanUp.W.size()
+            + sm.cleanUp.mean.size();
     CHECK(std::filesystem::file_size(dir / "face.model") < 8 * doubles + 8 * model.triangles.size() + 4096);
 }
 

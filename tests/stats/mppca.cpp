@@ -47,8 +47,8 @@ std::vector<int> matchComponents(const Mppca& truth, const Mppca& fitted)
     return match;
 }
 
-void checkRecovery(const Mppca& truth, const MppcaFit& fit, double meanTolerance, double angleTolerance,
-                   double sigmaTolerance, double priorTolerance)
+void checkRecovery(
+    const Mppca& truth, const MppcaFit& fit, double meanTolerance, double angleTolerance, double sigmaTolerance, double priorTolerance)
 {
     REQUIRE(fit.model.size() == truth.size());
     const std::vector<int> match = matchComponents(truth, fit.model);
@@ -72,7 +72,7 @@ TEST_CASE("mppca: EM never lowers the likelihood")
 {
     // Overlapping components, so that EM takes many soft steps: once with d < n (M-step
     // through the data factor), once with d >> n (M-step through the Gram matrix).
-    for (const auto& [d, n, K, q, meanScale] : {std::tuple{12, 300, 4, 2, 0.7}, std::tuple{200, 80, 3, 3, 0.15}}) {
+    for (const auto& [d, n, K, q, meanScale] : { std::tuple { 12, 300, 4, 2, 0.7 }, std::tuple { 200, 80, 3, 3, 0.15 } }) {
         Random random(21);
         Mppca truth;
         for (int k = 0; k < K; ++k)
@@ -212,7 +212,7 @@ TEST_CASE("mppca: held-out likelihood picks the true number of components")
     const Eigen::MatrixXd X = sampleMixture(random, truth, 150, labels);
     MppcaOptions options;
     options.latentDim = 2;
-    const ComponentChoice choice = chooseComponents(X, {1, 2, 3, 4}, options, 3, 1);
+    const ComponentChoice choice = chooseComponents(X, { 1, 2, 3, 4 }, options, 3, 1);
     REQUIRE(choice.scores.size() == 4);
     std::ostringstream table;
     for (const ComponentScore& s : choice.scores)

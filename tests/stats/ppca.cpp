@@ -5,8 +5,8 @@
 #include "core/error.h"
 #include "synthetic.h"
 
-#include <catch2/catch.hpp>
 #include <Eigen/Eigenvalues>
+#include <catch2/catch.hpp>
 #include <limits>
 
 using namespace facesketch;
@@ -16,11 +16,11 @@ using namespace facesketch::test;
 TEST_CASE("ppca: dual PPCA equals PPCA in subspace and sigma^2")
 {
     Random random(1);
-    for (const auto& [n, d, q] : {std::tuple{30, 80, 4}, std::tuple{60, 20, 3}, std::tuple{12, 200, 10}}) {
+    for (const auto& [n, d, q] : { std::tuple { 30, 80, 4 }, std::tuple { 60, 20, 3 }, std::tuple { 12, 200, 10 } }) {
         const Ppca truth = randomPpca(random, d, q, 5.0, 1.0, 0.3);
         Eigen::VectorXi labels;
         Mppca one;
-        one.components = {truth};
+        one.components = { truth };
         one.priors = Eigen::VectorXd::Ones(1);
         const Eigen::MatrixXd X = sampleMixture(random, one, n, labels);
         const Ppca primal = fitPpcaPrimal(X, q);
@@ -54,7 +54,7 @@ TEST_CASE("ppca: the fit is Tipping and Bishop's closed form")
 
     // It is a maximum: moving sigma^2 or scaling W only lowers the likelihood.
     const double best = logLikelihood(model, X).sum();
-    for (double factor : {0.9, 0.99, 1.01, 1.1}) {
+    for (double factor : { 0.9, 0.99, 1.01, 1.1 }) {
         Ppca moved = model;
         moved.sigma2 *= factor;
         CHECK(logLikelihood(moved, X).sum() < best);
@@ -92,8 +92,7 @@ TEST_CASE("ppca: latent is the posterior mean and clean-up the projection onto t
     // Clean-up: mu + W (W^T W)^{-1} W^T (t - mu), an idempotent orthogonal projection.
     const Eigen::MatrixXd clean = cleanUp(model, T);
     const Eigen::MatrixXd WtW = model.W.transpose() * model.W;
-    const Eigen::MatrixXd projected =
-        (model.W * WtW.llt().solve(model.W.transpose() * E)).colwise() + model.mean;
+    const Eigen::MatrixXd projected = (model.W * WtW.llt().solve(model.W.transpose() * E)).colwise() + model.mean;
     CHECK(relativeDifference(clean, projected.transpose()) < 1e-9);
     CHECK(relativeDifference(cleanUp(model, clean), clean) < 1e-9);
     const Eigen::MatrixXd residual = (T - clean) * model.W;

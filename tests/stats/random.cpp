@@ -1,8 +1,8 @@
 // Tests of stats/random: reproducible streams and the moments of the samplers.
 #include "stats/random.h"
 
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 
 using namespace facesketch::stats;

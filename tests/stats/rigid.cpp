@@ -7,8 +7,8 @@
 #include "stats/random.h"
 #include "test_common.h"
 
-#include <catch2/catch.hpp>
 #include <Eigen/Geometry>
+#include <catch2/catch.hpp>
 #include <fstream>
 #include <iterator>
 
@@ -31,7 +31,7 @@ Similarity knownSimilarity()
     Similarity s;
     s.rotation = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, -0.5).normalized()).toRotationMatrix();
     s.scale = 1.3;
-    s.translation = {4.0, -7.0, 2.5};
+    s.translation = { 4.0, -7.0, 2.5 };
     return s;
 }
 
@@ -98,8 +98,8 @@ TEST_CASE("rigid: a head moved by a similarity carries its parts exactly")
     layout.skinBegin = 2;
     layout.topology.resize(1, 3);
     layout.topology << 0, 2, 32;
-    layout.parts.push_back(makeRigidPart("ball", {32, 33, 34, 35, 36, 37}, skin, head, 8));
-    layout.parts.push_back(makeRigidPart("bit", {0, 1}, skin, head, 5));
+    layout.parts.push_back(makeRigidPart("ball", { 32, 33, 34, 35, 36, 37 }, skin, head, 8));
+    layout.parts.push_back(makeRigidPart("bit", { 0, 1 }, skin, head, 5));
     REQUIRE(layout.parts[0].anchors.size() == 8);
     validateHeadLayout(layout, 30, "test");
 
@@ -120,7 +120,7 @@ TEST_CASE("rigid: a head moved by a similarity carries its parts exactly")
     bad = layout;
     bad.parts[0].anchors.push_back(30);
     REQUIRE_THROWS_WITH(validateHeadLayout(bad, 30, "test"), Catch::Contains("anchor 30 outside the skin"));
-    REQUIRE_THROWS_WITH(assembleHead(HeadLayout{}, flat(skin), flat(skin)), Catch::Contains("skin only"));
+    REQUIRE_THROWS_WITH(assembleHead(HeadLayout {}, flat(skin), flat(skin)), Catch::Contains("skin only"));
 }
 
 TEST_CASE("rigid: the model file keeps the head layout, and version 1 files are refused")
@@ -132,35 +132,35 @@ TEST_CASE("rigid: the model file keeps the head layout, and version 1 files are 
     model.triangles << 0, 1, 2, 0, 2, 3;
     model.meanFace = Eigen::VectorXd::LinSpaced(12, 0.0, 11.0);
     model.segmentation.core = Eigen::VectorXi::Zero(4);
-    model.segmentation.vertices = {{0, 1, 2, 3}};
-    model.segmentation.weights = {Eigen::VectorXd::Ones(4)};
+    model.segmentation.vertices = { { 0, 1, 2, 3 } };
+    model.segmentation.weights = { Eigen::VectorXd::Ones(4) };
     SegmentModel sm;
     Ppca p;
     p.mean = model.meanFace;
     p.W = Eigen::MatrixXd::Identity(12, 2);
     p.sigma2 = 0.5;
     sm.mixture.priors = Eigen::VectorXd::Ones(1);
-    sm.mixture.components = {p};
+    sm.mixture.components = { p };
     sm.cleanUp = p;
-    model.segments = {sm};
+    model.segments = { sm };
     Ppca c;
     c.mean = Eigen::VectorXd::Zero(2);
     c.W = Eigen::MatrixXd::Ones(2, 1);
     c.sigma2 = 0.1;
     model.correlation.priors = Eigen::VectorXd::Ones(1);
-    model.correlation.components = {c};
+    model.correlation.components = { c };
     model.head.vertexCount = 6;
     model.head.skinBegin = 0;
     model.head.topology.resize(1, 3);
     model.head.topology << 3, 4, 5;
     RigidPart part;
     part.name = "eye_left";
-    part.vertices = {4, 5};
+    part.vertices = { 4, 5 };
     part.mean.resize(2, 3);
     part.mean << 1, 2, 3, 4, 5, 6;
-    part.anchors = {1, 3};
+    part.anchors = { 1, 3 };
     part.scale = false;
-    model.head.parts = {part};
+    model.head.parts = { part };
 
     test::TempDir dir;
     saveFaceModel(model, dir / "head.model");

@@ -43,8 +43,8 @@ double largestJump(const Mesh& mesh, const Eigen::VectorXd& face, const Eigen::V
     for (Eigen::Index f = 0; f < mesh.triangleCount(); ++f)
         for (int c = 0; c < 3; ++c) {
             const int u = mesh.F(f, c), v = mesh.F(f, (c + 1) % 3);
-            const Eigen::Vector3d e = (face.segment<3>(3 * u) - face.segment<3>(3 * v)) -
-                                      (truth.segment<3>(3 * u) - truth.segment<3>(3 * v));
+            const Eigen::Vector3d e
+                = (face.segment<3>(3 * u) - face.segment<3>(3 * v)) - (truth.segment<3>(3 * u) - truth.segment<3>(3 * v));
             jump = std::max(jump, e.norm());
         }
     return jump;
@@ -87,7 +87,7 @@ TEST_CASE("segmentation: groups partition the face, mirror left and right, respe
 TEST_CASE("segmentation: blend weights form a partition of unity")
 {
     const Mesh mesh = bumpGrid(15);
-    for (int rings : {0, 1, 3}) {
+    for (int rings : { 0, 1, 3 }) {
         SegmentationOptions options;
         options.clusters = 6;
         options.minVertices = 30;
@@ -119,8 +119,8 @@ TEST_CASE("segmentation: overlap turns a seam into a ramp")
     Eigen::VectorXd truth(3 * mesh.vertexCount());
     for (Eigen::Index v = 0; v < mesh.vertexCount(); ++v)
         truth.segment<3>(3 * v) = mesh.V.row(v).transpose();
-    double jump[2] = {0.0, 0.0};
-    for (int rings : {0, 3}) {
+    double jump[2] = { 0.0, 0.0 };
+    for (int rings : { 0, 3 }) {
         SegmentationOptions options;
         options.clusters = 5;
         options.minVertices = 30;

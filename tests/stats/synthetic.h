@@ -14,8 +14,7 @@
 namespace facesketch::test {
 
 /// A PPCA with a random mean of scale meanScale, loadings of about `scale` per coordinate.
-inline stats::Ppca randomPpca(stats::Random& random, Eigen::Index d, int q, double meanScale, double scale,
-                              double sigma2)
+inline stats::Ppca randomPpca(stats::Random& random, Eigen::Index d, int q, double meanScale, double scale, double sigma2)
 {
     stats::Ppca p;
     p.mean = meanScale * random.normalMatrix(d, 1);
@@ -25,8 +24,7 @@ inline stats::Ppca randomPpca(stats::Random& random, Eigen::Index d, int q, doub
 }
 
 /// n samples (rows) from the mixture; labels(i) is the component that drew sample i.
-inline Eigen::MatrixXd sampleMixture(stats::Random& random, const stats::Mppca& model, Eigen::Index n,
-                                     Eigen::VectorXi& labels)
+inline Eigen::MatrixXd sampleMixture(stats::Random& random, const stats::Mppca& model, Eigen::Index n, Eigen::VectorXi& labels)
 {
     const Eigen::Index d = model.dim();
     Eigen::MatrixXd X(n, d);
@@ -39,8 +37,7 @@ inline Eigen::MatrixXd sampleMixture(stats::Random& random, const stats::Mppca& 
             ++k;
         }
         const stats::Ppca& c = model.components[static_cast<size_t>(k)];
-        X.row(i) = (c.mean + c.W * random.normalMatrix(c.latentDim(), 1) +
-                    std::sqrt(c.sigma2) * random.normalMatrix(d, 1)).transpose();
+        X.row(i) = (c.mean + c.W * random.normalMatrix(c.latentDim(), 1) + std::sqrt(c.sigma2) * random.normalMatrix(d, 1)).transpose();
         labels(i) = static_cast<int>(k);
     }
     return X;
@@ -66,10 +63,8 @@ inline double denseLogDensity(const Eigen::VectorXd& x, const Eigen::VectorXd& m
 /// Largest principal angle between the column spans of A and B (same column count), radians.
 inline double largestPrincipalAngle(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B)
 {
-    const Eigen::MatrixXd Qa = Eigen::HouseholderQR<Eigen::MatrixXd>(A).householderQ() *
-                               Eigen::MatrixXd::Identity(A.rows(), A.cols());
-    const Eigen::MatrixXd Qb = Eigen::HouseholderQR<Eigen::MatrixXd>(B).householderQ() *
-                               Eigen::MatrixXd::Identity(B.rows(), B.cols());
+    const Eigen::MatrixXd Qa = Eigen::HouseholderQR<Eigen::MatrixXd>(A).householderQ() * Eigen::MatrixXd::Identity(A.rows(), A.cols());
+    const Eigen::MatrixXd Qb = Eigen::HouseholderQR<Eigen::MatrixXd>(B).householderQ() * Eigen::MatrixXd::Identity(B.rows(), B.cols());
     const Eigen::VectorXd cosines = Eigen::JacobiSVD<Eigen::MatrixXd>(Qa.transpose() * Qb).singularValues();
     return std::acos(std::min(1.0, cosines.minCoeff()));
 }
@@ -77,7 +72,7 @@ inline double largestPrincipalAngle(const Eigen::MatrixXd& A, const Eigen::Matri
 /// |a - b| / max(|a|, |b|, tiny): the relative difference the tests compare against 1e-9.
 inline double relativeDifference(double a, double b)
 {
-    return std::abs(a - b) / std::max({std::abs(a), std::abs(b), 1e-300});
+    return std::abs(a - b) / std::max({ std::abs(a), std::abs(b), 1e-300 });
 }
 
 /// max |A - B| / max |B|.

@@ -12,7 +12,7 @@
 
 namespace facesketch::test {
 
-inline constexpr int kHalf = 10;            // grid of 21 by 21 vertices
+inline constexpr int kHalf = 10; // grid of 21 by 21 vertices
 inline constexpr int kSide = 2 * kHalf + 1;
 inline constexpr int kNoseTip = kHalf + kSide * kHalf;
 
@@ -44,8 +44,8 @@ inline Eigen::MatrixXd syntheticFaces(stats::Random& random, int n)
                 const double u = (i - kHalf) / double(kHalf), w = (j - kHalf) / double(kHalf);
                 const double r2 = u * u + w * w;
                 const double bump = std::exp(-r2 / 0.05);
-                const double z = (30.0 + nose) * bump + a(0) * u + a(1) * w + a(2) * u * u + a(3) * w * w +
-                                 a(4) * u * w + a(5) * std::cos(std::numbers::pi * std::sqrt(r2) / 1.5);
+                const double z = (30.0 + nose) * bump + a(0) * u + a(1) * w + a(2) * u * u + a(3) * w * w + a(4) * u * w
+                    + a(5) * std::cos(std::numbers::pi * std::sqrt(r2) / 1.5);
                 const int v = i + kSide * j;
                 faces(f, 3 * v + 0) = 60.0 * u * width + 0.2 * random.normal();
                 faces(f, 3 * v + 1) = 60.0 * w + 0.2 * random.normal();

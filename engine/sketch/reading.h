@@ -1,0 +1,36 @@
+#pragma once
+// What a stroke says about the face once it is read: the vertices it pins down and where
+// (thesis 4.6.2, 4.8.2). Every mapper (sketch/mapper.h) returns one; the tracking model
+// (sketch/tracking.h) turns it into measurements for the face model's conditional inference.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+namespace facesketch::sketch {
+
+/// One vertex a stroke pins down.
+struct VertexObservation {
+    std::uint32_t vertex = 0;                           ///< in the face model's numbering
+    Eigen::Vector3d position = Eigen::Vector3d::Zero(); ///< world, mm
+    /// Only the image of `position` in the stroke's view counts (measured with the view's x and
+    /// y rows, stats::Observations::addProjectedVertex); its depth is left to the model.
+    bool viewPlaneOnly = false;
+    int strokePoint = -1; ///< index of the (densified) stroke point it came from
+};
+
+struct StrokeReading {
+    /// At most one per vertex, in stroke order.
+    std::vector<VertexObservation> observations;
+    /// The stroke after densification and projection: screen (pixels) and world (mm) per point.
+    std::vector<Eigen::Vector2d> screenPoints;
+    std::vector<Eigen::Vector3d> worldPoints;
+    /// Per densified point: how many candidates it had, and the candidate it was mapped to
+    /// (index into `candidates`, -1 if none).
+    std::vector<int> candidateCounts;
+    std::vector<int> chosen;
+    /// The x and y rows of the view's rotation (for viewPlaneOnly observations).
+    Eigen::Matrix<double, 2, 3> viewPlane = Eigen::Matrix<double, 2, 3>::Zero();
+};
+
+} // namespace facesketch::sketch
