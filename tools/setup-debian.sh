@@ -8,7 +8,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools spirv-tools
   libglfw3-dev libglm-dev libeigen3-dev libimgui-dev catch2
   libtinyobjloader-dev nlohmann-json3-dev libcli11-dev libstb-dev libmeshoptimizer-dev
-  xvfb xauth
+  xvfb xauth clang-format
 )
 
 missing=()

@@ -9,6 +9,8 @@ mode=release
 [ "${1:-}" = "--sanitize" ] && mode=sanitize
 
 bash tools/setup-debian.sh
+# The house format (.clang-format) holds for every C++ file in the repository.
+git ls-files -z '*.cpp' '*.h' | xargs -0 clang-format --dry-run -Werror
 jobs=$(nproc)
 # Line tables only (-g1): sanitizer reports and crashes still name file and line, and each
 # build compiles a fifth faster than with full -g (CI builds the tree twice; BENCHMARKS.md).
