@@ -16,7 +16,6 @@
 #include "stats/mppca.h"
 #include "stats/random.h"
 
-#include <algorithm>
 #include <cmath>
 #include <vector>
 
