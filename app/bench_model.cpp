@@ -1,11 +1,11 @@
-// `facesketch bench stats` and `facesketch bench train`: the statistics core on synthetic data,
-// and the face model trained on the synthetic low, high and ultra sets (issue 4).
+// `facesketch bench train`: the face model trained on the synthetic low, high and ultra sets
+// (issue 4). The statistics core alone (`bench stats`) is app/bench_stats.cpp.
 #include "bench.h"
 
 #include "core/stopwatch.h"
 #include "dataset/synth.h"
+#include "model/head_assembly.h"
 #include "model/head_model.h"
-#include "stats/bench_stats.h"
 #include "stats/model_file.h"
 #include "stats/random.h"
 
@@ -15,11 +15,6 @@
 #include <unistd.h>
 
 namespace facesketch::app {
-
-void benchStatsCore(const BenchOptions&, std::ostream& out)
-{
-    stats::benchStats(out);
-}
 
 void benchTrain(const BenchOptions& options, std::ostream& out)
 {
@@ -68,7 +63,7 @@ void benchTrain(const BenchOptions& options, std::ostream& out)
             const stats::Reconstruction rec = stats::reconstruct(model, obs);
             face.push_back(t.milliseconds());
             t.restart();
-            const Mesh whole = stats::assembleHead(model.head, model.meanFace, rec.face);
+            const Mesh whole = model::assembleHead(model.head, model.meanFace, rec.face);
             head.push_back(t.milliseconds());
         }
         out << "reconstruct_" << name << "_ms " << median(face) << " ms\n";

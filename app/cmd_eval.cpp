@@ -5,9 +5,9 @@
 #include "commands.h"
 
 #include "core/error.h"
+#include "evaluation/evaluate.h"
 #include "model/head_model.h"
 #include "model/regions.h"
-#include "stats/evaluate.h"
 #include "stats/model_file.h"
 
 #include <iomanip>
@@ -38,7 +38,7 @@ void runObserve(const ObserveCommand& c)
     if (test.rows() == 0)
         fail(c.dataset, ": no `test` samples to evaluate on");
 
-    stats::ObserveOptions o;
+    evaluation::ObserveOptions o;
     o.fraction = c.fraction;
     o.seed = c.seed;
     o.reconstruct.correlation = c.noCorrelation ? stats::Correlation::Off : stats::parseCorrelation(c.correlation);
@@ -48,7 +48,7 @@ void runObserve(const ObserveCommand& c)
         if (o.region.empty())
             fail("region ", c.region, " holds no vertex within ", c.radius, " mm of its landmarks");
     }
-    const stats::ObserveScore s = stats::evaluateObserve(m, test, o);
+    const evaluation::ObserveScore s = evaluation::evaluateObserve(m, test, o);
 
     std::cout << std::fixed << std::setprecision(2);
     std::cout << "# " << s.faces << " test faces of " << c.dataset << ", " << m.vertexCount() << " skin vertices, measured "

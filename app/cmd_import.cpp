@@ -3,6 +3,7 @@
 // (--vertices) of either or of any existing dataset.
 #include "commands.h"
 
+#include "core/assets.h"
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "dataset/import_ict.h"
@@ -19,21 +20,11 @@ namespace {
 namespace fs = std::filesystem;
 using namespace facesketch::dataset;
 
-// The pose recipes: --recipes, else assets/ict-poses.json under $FACESKETCH_SOURCE_DIR, the
-// source tree this binary was built from, or the current folder.
+// The pose recipes: --recipes, else the ict-poses.json installed with the program
+// (core/assets.h).
 fs::path findRecipes(const std::string& given)
 {
-    if (!given.empty())
-        return given;
-    std::vector<fs::path> candidates;
-    if (const char* dir = std::getenv("FACESKETCH_SOURCE_DIR"))
-        candidates.push_back(fs::path(dir) / "assets" / "ict-poses.json");
-    candidates.push_back(fs::path(__FILE__).parent_path().parent_path() / "assets" / "ict-poses.json");
-    candidates.push_back(fs::path("assets") / "ict-poses.json");
-    for (const fs::path& p : candidates)
-        if (fs::is_regular_file(p))
-            return p;
-    fail("import ict-facekit: cannot find assets/ict-poses.json; give it with --recipes FILE");
+    return given.empty() ? findAsset("ict-poses.json") : fs::path(given);
 }
 
 } // namespace

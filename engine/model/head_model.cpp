@@ -1,6 +1,7 @@
 #include "model/head_model.h"
 
 #include "core/error.h"
+#include "model/head_assembly.h"
 
 namespace facesketch::model {
 
@@ -77,14 +78,14 @@ stats::FaceModel trainHeadModel(const dataset::Dataset& dataset, const HeadModel
         std::vector<int> vertices(static_cast<size_t>(c.size()));
         for (int v = c.begin; v < c.end; ++v)
             vertices[static_cast<size_t>(v - c.begin)] = v;
-        head.parts.push_back(stats::makeRigidPart(c.name, vertices, meanSkin, meanHead, options.anchors, options.scale));
+        head.parts.push_back(makeRigidPart(c.name, vertices, meanSkin, meanHead, options.anchors, options.scale));
     }
     std::vector<int> rest;
     for (int v = 0; v < m.vertexCount; ++v)
         if (!owned[static_cast<size_t>(v)])
             rest.push_back(v);
     if (!rest.empty())
-        head.parts.push_back(stats::makeRigidPart("unassigned", rest, meanSkin, meanHead, options.anchors, options.scale));
+        head.parts.push_back(makeRigidPart("unassigned", rest, meanSkin, meanHead, options.anchors, options.scale));
     stats::validateHeadLayout(head, skin.size(), where);
     if (progress)
         progress("rigid parts placed", 1.0);

@@ -2,7 +2,7 @@
 // The face model of a whole dataset (`facesketch train`): the statistical skin model of
 // stats/face_model.h trained on the dataset's skin, plus the dataset's full topology and its
 // rigid parts (eyeballs, teeth, tongue: every component other than the skin), each following
-// the skin around it (stats/rigid.h), so a reconstruction is a complete head.
+// the skin around it (model/head_assembly.h), so a reconstruction is a complete head.
 
 #include "dataset/dataset.h"
 #include "stats/face_model.h"

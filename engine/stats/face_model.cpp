@@ -263,9 +263,4 @@ Reconstruction reconstruct(const FaceModel& model, const Observations& observati
     return result;
 }
 
-Mesh reconstructHead(const FaceModel& model, const Observations& observations, const ReconstructOptions& options)
-{
-    return assembleHead(model.head, model.meanFace, reconstruct(model, observations, options).face);
-}
-
 } // namespace facesketch::stats

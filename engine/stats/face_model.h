@@ -34,9 +34,9 @@
 
 #include "core/mesh.h"
 #include "stats/conditional.h"
+#include "stats/head_layout.h"
 #include "stats/mppca.h"
 #include "stats/ppca.h"
-#include "stats/rigid.h"
 #include "stats/segmentation.h"
 
 #include <Eigen/Core>
@@ -92,7 +92,8 @@ struct FaceModel {
     /// from the fields above by deriveFaceModel (not stored in the model file).
     Mppca joint;
     /// The rest of the head (eyeballs, teeth, tongue) and its topology; empty (vertexCount 0)
-    /// for a skin-only model. Filled by model/head_model.h trainHeadModel.
+    /// for a skin-only model. Filled by model/head_model.h trainHeadModel; a whole head is
+    /// rebuilt from it by model/head_assembly.h.
     HeadLayout head;
 
     Eigen::Index vertexCount() const { return meanFace.size() / 3; }
@@ -155,12 +156,8 @@ void deriveFaceModel(FaceModel& model);
 /// line each for the correlation mixture and the joint model.
 std::string describe(const FaceModel& model);
 
-/// The most probable face given the measurements (vertex indices are those of the model).
+/// The most probable face given the measurements (vertex indices are those of the model). The
+/// whole head with its rigid parts: model/head_assembly.h reconstructHead.
 Reconstruction reconstruct(const FaceModel& model, const Observations& observations, const ReconstructOptions& options = {});
-
-/// The whole head for the measurements: reconstruct(), then the rigid parts moved with the
-/// skin around them (stats/rigid.h assembleHead). Returns #head vertices by 3 and the head's
-/// triangles. Throws Error for a skin-only model.
-Mesh reconstructHead(const FaceModel& model, const Observations& observations, const ReconstructOptions& options = {});
 
 } // namespace facesketch::stats

@@ -295,14 +295,20 @@ ComponentChoice chooseComponents(
         o.components = K;
         ComponentScore score { K, 0.0, 0.0 };
         for (size_t f = 0; f < train.size(); ++f) {
+            // K is not viable on this fold if the fold has fewer samples than components, or
+            // if a component's fit is degenerate (an empty cluster). Anything else (bad
+            // options, identical samples) is the caller's to see, so only these two are skipped.
+            if (static_cast<size_t>(K) > train[f].size()) {
+                score.heldOut = -std::numeric_limits<double>::infinity();
+                continue;
+            }
             try {
                 const GramFit fit = runEm(G, factor, X.cols(), train[f], o);
                 const Eigen::VectorXd logP = logSumExpRows(fit.logJoint);
                 for (Eigen::Index i : test[f])
                     score.heldOut += logP(i);
                 score.training += fit.logLikelihood.back() / static_cast<double>(train[f].size());
-            } catch (const Error&) {
-                // A fold too small for K clusters of this latent dimension: K is not viable.
+            } catch (const DegenerateFit&) {
                 score.heldOut = -std::numeric_limits<double>::infinity();
             }
         }

@@ -129,6 +129,10 @@ struct ComponentChoice {
 /// @param[in] options     everything but options.components is used for every fit
 /// @param[in] folds       number of folds, 2 <= folds <= n
 /// @param[in] seed        seed of the fold permutation
+/// A candidate K that a fold cannot carry (more components than the fold's training samples,
+/// or a degenerate component fit, stats/ppca.h DegenerateFit) scores -infinity; every other
+/// Error propagates: a NaN in X, bad folds or candidates, options fitMppca rejects (latentDim
+/// outside [1, d), restarts < 1), training samples of a fold all identical.
 ComponentChoice chooseComponents(
     const Eigen::MatrixXd& X, const std::vector<int>& candidates, const MppcaOptions& options, int folds = 5, std::uint64_t seed = 1);
 

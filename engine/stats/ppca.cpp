@@ -46,7 +46,7 @@ GramPpca fitPpcaGram(
             support.push_back(i);
     const auto s = static_cast<Eigen::Index>(support.size());
     if (s == 0)
-        fail("fitPpcaGram: all weights are zero");
+        throw DegenerateFit("fitPpcaGram: all weights are zero");
 
     // Rows of zero weight add nothing to S, so working on the support only is exact.
     const Eigen::VectorXd w = weights(support);
@@ -66,7 +66,7 @@ GramPpca fitPpcaGram(
         const Eigen::MatrixXd K = Y.transpose() * Y;
         Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(K);
         if (eig.info() != Eigen::Success)
-            fail("fitPpcaGram: eigen-decomposition of the ", K.rows(), " by ", K.rows(), " covariance failed");
+            throw DegenerateFit(cat("fitPpcaGram: eigen-decomposition of the ", K.rows(), " by ", K.rows(), " covariance failed"));
         const Eigen::Index r = K.rows();
         for (Eigen::Index j = 0; j < std::min<Eigen::Index>(q, r); ++j) {
             fit.eigenvalues(j) = std::max(0.0, eig.eigenvalues()(r - 1 - j));
@@ -86,7 +86,7 @@ GramPpca fitPpcaGram(
         const Eigen::MatrixXd K = root.asDiagonal() * H * root.asDiagonal();
         Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(K);
         if (eig.info() != Eigen::Success)
-            fail("fitPpcaGram: eigen-decomposition of the ", s, " by ", s, " Gram matrix failed");
+            throw DegenerateFit(cat("fitPpcaGram: eigen-decomposition of the ", s, " by ", s, " Gram matrix failed"));
         for (Eigen::Index j = 0; j < std::min<Eigen::Index>(q, s); ++j) {
             fit.eigenvalues(j) = std::max(0.0, eig.eigenvalues()(s - 1 - j));
             U.col(j) = eig.eigenvectors().col(s - 1 - j);

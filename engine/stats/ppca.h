@@ -18,9 +18,20 @@
 // when d > n. A column whose eigenvalue does not exceed sigma^2 is zero.
 // Nothing here forms a d by d matrix except fitPpcaPrimal, the textbook reference.
 
+#include "core/error.h"
+
 #include <Eigen/Core>
 
 namespace facesketch::stats {
+
+/// A component that cannot be fit from the samples it was given: no sample has a positive
+/// weight (a mixture's cluster came out empty), or the eigen-decomposition did not converge.
+/// Not a fault of the caller's data as a whole; a caller trying several numbers of mixture
+/// components (chooseComponents, stats/mppca.h) skips the candidate that met it.
+class DegenerateFit : public Error {
+public:
+    using Error::Error;
+};
 
 /// A fitted PPCA model. Owns its arrays; copying is cheap next to a fit.
 struct Ppca {
@@ -62,6 +73,8 @@ struct GramPpca {
 ///                     still the constrained maximum-likelihood solution.
 /// @param[in] factor   optional n by r matrix F with F F^T = G (the centred samples themselves
 ///                     when d < n): used when r is smaller than the support. Not owned.
+/// Throws Error for q outside [1, d), DegenerateFit if no weight is positive or the
+/// eigen-decomposition fails.
 GramPpca fitPpcaGram(const Eigen::MatrixXd& G, const Eigen::VectorXd& weights, Eigen::Index d, int q, double sigma2Floor = 0.0,
     const Eigen::MatrixXd* factor = nullptr);
 

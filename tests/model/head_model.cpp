@@ -6,8 +6,9 @@
 
 #include "core/error.h"
 #include "dataset/import_ict.h"
+#include "evaluation/evaluate.h"
+#include "model/head_assembly.h"
 #include "model/regions.h"
-#include "stats/evaluate.h"
 #include "stats/model_file.h"
 #include "stats/random.h"
 #include "trained.h"
@@ -18,6 +19,7 @@
 
 using namespace facesketch;
 using namespace facesketch::stats;
+using namespace facesketch::evaluation;
 
 namespace {
 
@@ -145,11 +147,12 @@ TEST_CASE("head_model: eyeballs stay in their sockets as the face changes")
         for (int v = 0; v < t.model.vertexCount(); ++v)
             if (random.uniform() < 0.15)
                 obs.addVertex(v, t.testSkin.row(f).segment<3>(3 * v).transpose());
-        const Mesh head = reconstructHead(t.model, obs);
+        const Mesh head = model::reconstructHead(t.model, obs);
         REQUIRE(head.vertexCount() == m.vertexCount);
         REQUIRE(head.F == m.topology);
         const Eigen::RowVectorXd rebuilt = dataset::flatten(head.V);
-        const Eigen::RowVectorXd followed = dataset::flatten(assembleHead(t.model.head, t.model.meanFace, t.testSkin.row(f).transpose()).V);
+        const Eigen::RowVectorXd followed
+            = dataset::flatten(model::assembleHead(t.model.head, t.model.meanFace, t.testSkin.row(f).transpose()).V);
         for (const auto& [eye, ring] : { std::pair { "eye_left", "eye_socket_l" }, std::pair { "eye_right", "eye_socket_r" } }) {
             const std::vector<int> ball = range(*m.component(eye));
             const std::vector<int>& socket = m.contours.at(ring);
@@ -183,7 +186,7 @@ TEST_CASE("head_model: the model file keeps the whole head")
     Observations obs;
     for (int v = 0; v < t.model.vertexCount(); v += 7)
         obs.addVertex(v, t.testSkin.row(0).segment<3>(3 * v).transpose());
-    const Mesh a = reconstructHead(t.model, obs), b = reconstructHead(back, obs);
+    const Mesh a = model::reconstructHead(t.model, obs), b = model::reconstructHead(back, obs);
     CHECK(a.V == b.V);
     CHECK(a.F == b.F);
     model::requireModelFits(back, t.dataset.manifest, "test");
@@ -250,5 +253,5 @@ TEST_CASE("head_model: an ICT-FaceKit import observed at 15% at random or at one
     Observations obs;
     for (int v : o.region)
         obs.addVertex(v, test.row(0).segment<3>(3 * v).transpose());
-    CHECK(reconstructHead(model, obs).vertexCount() == ds.manifest.vertexCount);
+    CHECK(model::reconstructHead(model, obs).vertexCount() == ds.manifest.vertexCount);
 }

@@ -132,3 +132,60 @@ TEST_CASE("model_file: wrong, old, truncated and corrupt files give clear errors
 
     REQUIRE_THROWS_WITH(loadFaceModel(dir / "missing.model"), Catch::Contains("missing.model"));
 }
+
+TEST_CASE("model_file: the model file keeps the head layout, and version 1 files are refused")
+{
+    // A one-segment, one-component model of a 4-vertex skin; the file format does not care
+    // whether it was trained.
+    FaceModel model;
+    model.triangles.resize(2, 3);
+    model.triangles << 0, 1, 2, 0, 2, 3;
+    model.meanFace = Eigen::VectorXd::LinSpaced(12, 0.0, 11.0);
+    model.segmentation.core = Eigen::VectorXi::Zero(4);
+    model.segmentation.vertices = { { 0, 1, 2, 3 } };
+    model.segmentation.weights = { Eigen::VectorXd::Ones(4) };
+    SegmentModel sm;
+    Ppca p;
+    p.mean = model.meanFace;
+    p.W = Eigen::MatrixXd::Identity(12, 2);
+    p.sigma2 = 0.5;
+    sm.mixture.priors = Eigen::VectorXd::Ones(1);
+    sm.mixture.components = { p };
+    sm.cleanUp = p;
+    model.segments = { sm };
+    Ppca c;
+    c.mean = Eigen::VectorXd::Zero(2);
+    c.W = Eigen::MatrixXd::Ones(2, 1);
+    c.sigma2 = 0.1;
+    model.correlation.priors = Eigen::VectorXd::Ones(1);
+    model.correlation.components = { c };
+    model.head.vertexCount = 6;
+    model.head.skinBegin = 0;
+    model.head.topology.resize(1, 3);
+    model.head.topology << 3, 4, 5;
+    RigidPart part;
+    part.name = "eye_left";
+    part.vertices = { 4, 5 };
+    part.mean.resize(2, 3);
+    part.mean << 1, 2, 3, 4, 5, 6;
+    part.anchors = { 1, 3 };
+    part.scale = false;
+    model.head.parts = { part };
+
+    test::TempDir dir;
+    saveFaceModel(model, dir / "head.model");
+    const FaceModel back = loadFaceModel(dir / "head.model");
+    REQUIRE(back.head.vertexCount == 6);
+    REQUIRE(back.head.topology == model.head.topology);
+    REQUIRE(back.head.parts.size() == 1);
+    CHECK(back.head.parts[0].name == "eye_left");
+    CHECK(back.head.parts[0].vertices == part.vertices);
+    CHECK(back.head.parts[0].mean == part.mean);
+    CHECK(back.head.parts[0].anchors == part.anchors);
+    CHECK(back.head.parts[0].scale == false);
+
+    std::string bytes = readBytes(dir / "head.model");
+    bytes[8] = 1; // the version written before the head layout existed
+    writeBytes(dir / "v1.model", bytes);
+    REQUIRE_THROWS_WITH(loadFaceModel(dir / "v1.model"), Catch::Contains("version 1") && Catch::Contains("retrain"));
+}

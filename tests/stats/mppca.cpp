@@ -246,3 +246,34 @@ TEST_CASE("mppca: deterministic, and rejects NaN and bad options")
     options.components = 51;
     REQUIRE_THROWS_AS(fitMppca(X, options), Error);
 }
+
+TEST_CASE("mppca: choosing K skips a K a fold cannot carry and lets bad input through")
+{
+    Random random(29);
+    Eigen::MatrixXd X = random.normalMatrix(30, 8);
+    X.topRows(15).array() += 10.0;
+    MppcaOptions options;
+    options.latentDim = 2;
+    // 3 folds of 30 samples train on 20: K = 25 is a valid candidate (< n) that no fold can fit.
+    const ComponentChoice choice = chooseComponents(X, { 1, 2, 25 }, options, 3, 1);
+    REQUIRE(choice.scores.size() == 3);
+    CHECK(choice.scores[2].heldOut == -std::numeric_limits<double>::infinity());
+    CHECK(choice.scores[2].training == 0.0);
+    CHECK(std::isfinite(choice.scores[0].heldOut));
+    CHECK(std::isfinite(choice.scores[1].heldOut));
+    CHECK(choice.best == (choice.scores[1].heldOut > choice.scores[0].heldOut ? 2 : 1));
+
+    // Options the fit rejects are the caller's error, not an unviable K.
+    options.latentDim = 8;
+    REQUIRE_THROWS_WITH(chooseComponents(X, { 1, 2 }, options, 3, 1), Catch::Contains("latentDim = 8"));
+    options.latentDim = 2;
+    options.restarts = 0;
+    REQUIRE_THROWS_WITH(chooseComponents(X, { 1, 2 }, options, 3, 1), Catch::Contains("restarts = 0"));
+    options.restarts = 1;
+    // Identical samples fit no K at all.
+    const Eigen::MatrixXd same = Eigen::MatrixXd::Ones(30, 8);
+    REQUIRE_THROWS_WITH(chooseComponents(same, { 1, 2 }, options, 3, 1), Catch::Contains("all identical"));
+    Eigen::MatrixXd bad = X;
+    bad(7, 3) = std::numeric_limits<double>::quiet_NaN();
+    REQUIRE_THROWS_WITH(chooseComponents(bad, { 1, 2 }, options, 3, 1), Catch::Contains("X(7, 3)"));
+}

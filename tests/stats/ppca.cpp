@@ -111,3 +111,20 @@ TEST_CASE("ppca: rejects NaN and a latent dimension out of range")
     REQUIRE_THROWS_WITH(logLikelihood(model, X), Catch::Contains("(3, 4)"));
     REQUIRE_THROWS_AS(logLikelihood(model, Eigen::MatrixXd::Zero(2, 5)), Error);
 }
+
+TEST_CASE("ppca: a Gram fit with no weighted sample is a degenerate fit, a bad q is not")
+{
+    Random random(6);
+    const Eigen::MatrixXd X = random.normalMatrix(10, 6);
+    const Eigen::MatrixXd G = X * X.transpose();
+    REQUIRE_THROWS_AS(fitPpcaGram(G, Eigen::VectorXd::Zero(10), 6, 2), DegenerateFit);
+    REQUIRE_THROWS_WITH(fitPpcaGram(G, Eigen::VectorXd::Zero(10), 6, 2), Catch::Contains("all weights are zero"));
+    try {
+        fitPpcaGram(G, Eigen::VectorXd::Constant(10, 0.1), 6, 6);
+        FAIL("q = d was accepted");
+    } catch (const DegenerateFit&) {
+        FAIL("q = d was reported as a degenerate fit");
+    } catch (const Error& e) {
+        CHECK(std::string(e.what()).find("latent dimension q = 6") != std::string::npos);
+    }
+}

@@ -1,14 +1,15 @@
-// Tests of stats/evaluate: the scores against a direct recomputation, the exact case of a
+// Tests of evaluation/evaluate: the scores against a direct recomputation, the exact case of a
 // fully measured face, and bad input.
-#include "stats/evaluate.h"
+#include "evaluation/evaluate.h"
 
 #include "core/error.h"
-#include "synthetic_faces.h"
+#include "stats/synthetic_faces.h"
 
 #include <catch2/catch.hpp>
 
 using namespace facesketch;
 using namespace facesketch::stats;
+using namespace facesketch::evaluation;
 using namespace facesketch::test;
 
 namespace {

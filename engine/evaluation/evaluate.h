@@ -3,13 +3,14 @@
 // face from some of its own vertices and compare with the whole face, beside the error of
 // the mean face.
 
+#include "stats/conditional.h"
 #include "stats/face_model.h"
 
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
 
-namespace facesketch::stats {
+namespace facesketch::evaluation {
 
 struct ObserveOptions {
     /// Fraction of the vertices measured, drawn independently per face (used if region is empty).
@@ -18,7 +19,7 @@ struct ObserveOptions {
     std::vector<int> region;
     /// Seed of the random draws of measured vertices.
     std::uint64_t seed = 1;
-    ReconstructOptions reconstruct;
+    stats::ReconstructOptions reconstruct;
 };
 
 struct ObserveScore {
@@ -39,6 +40,6 @@ struct ObserveScore {
 /// @param[in] faces  m by 3#V held-out faces, one per row, on the model's topology (mm)
 /// Throws Error for a NaN in faces, a column count other than the model's, a fraction
 /// outside (0, 1] or a region vertex out of range.
-ObserveScore evaluateObserve(const FaceModel& model, const Eigen::MatrixXd& faces, const ObserveOptions& options = {});
+ObserveScore evaluateObserve(const stats::FaceModel& model, const Eigen::MatrixXd& faces, const ObserveOptions& options = {});
 
-} // namespace facesketch::stats
+} // namespace facesketch::evaluation

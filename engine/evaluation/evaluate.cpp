@@ -1,4 +1,4 @@
-#include "stats/evaluate.h"
+#include "evaluation/evaluate.h"
 
 #include "core/error.h"
 #include "core/stopwatch.h"
@@ -7,7 +7,9 @@
 
 #include <algorithm>
 
-namespace facesketch::stats {
+namespace facesketch::evaluation {
+
+using namespace facesketch::stats;
 
 ObserveScore evaluateObserve(const FaceModel& model, const Eigen::MatrixXd& faces, const ObserveOptions& options)
 {
@@ -60,4 +62,4 @@ ObserveScore evaluateObserve(const FaceModel& model, const Eigen::MatrixXd& face
     return score;
 }
 
-} // namespace facesketch::stats
+} // namespace facesketch::evaluation
