@@ -2,12 +2,12 @@
 // and the face model trained on the synthetic low, high and ultra sets (issue 4).
 #include "bench.h"
 
+#include "core/random.h"
 #include "core/stopwatch.h"
 #include "dataset/synth.h"
 #include "model/head_model.h"
 #include "stats/bench_stats.h"
 #include "stats/model_file.h"
-#include "stats/random.h"
 
 #include <cstdlib>
 #include <filesystem>
@@ -57,7 +57,7 @@ void benchTrain(const BenchOptions& options, std::ostream& out)
         // One full reconstruction from 15% of a held-out face's skin vertices: every segment,
         // clean-up and correlation, blended, then the rigid parts placed.
         const Eigen::MatrixXd test = dataset::loadShapes(ds, dataset::Role::Test, "skin");
-        stats::Random random(7);
+        Random random(7);
         stats::Observations obs;
         for (Eigen::Index v = 0; v < model.vertexCount(); ++v)
             if (random.uniform() < 0.15)

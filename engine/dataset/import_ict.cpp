@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/names.h"
+#include "core/random.h"
 #include "dataset/dataset.h"
 #include "dataset/simplify.h"
 #include "dataset/synth.h"
@@ -25,7 +26,6 @@
 #include <limits>
 #include <numbers>
 #include <queue>
-#include <random>
 #include <set>
 #include <sstream>
 #include <string_view>
@@ -62,14 +62,6 @@ constexpr int kReadmeLandmarks[68] = { 1225, 1888, 1052, 367, 1719, 1722, 2199, 
     268, 493, 1914, 2044, 1401, 3615, 4240, 4114, 2734, 2509, 978, 4527, 4942, 4857, 1140, 2075, 1147, 4269, 3360, 1507, 1542, 1537, 1528,
     1518, 1511, 3742, 3751, 3756, 3721, 3725, 3732, 5708, 5695, 2081, 0, 4275, 6200, 6213, 6346, 6461, 5518, 5957, 5841, 5702, 5711, 5533,
     6216, 6207, 6470, 5517, 5966 };
-
-std::uint64_t splitmix64(std::uint64_t x)
-{
-    x += 0x9E3779B97F4A7C15ull;
-    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-    return x ^ (x >> 31);
-}
 
 fs::path modelFolder(const fs::path& path)
 {
@@ -730,15 +722,10 @@ IctModel loadIctModel(const fs::path& path, const IctOptions& options, const std
 
 Eigen::VectorXd ictCoefficients(std::uint64_t seed, int index, int modes)
 {
-    std::mt19937_64 rng(splitmix64(splitmix64(seed) ^ static_cast<std::uint64_t>(index)));
-    auto uniform = [&] { return (static_cast<double>(rng() >> 11) + 1.0) * 0x1.0p-53; }; // (0, 1]
+    Random rng(splitMix64(splitMix64(seed) ^ static_cast<std::uint64_t>(index)), BoxMuller::PlusOne);
     Eigen::VectorXd c(modes);
-    for (int i = 0; i < modes; i += 2) {
-        const double r = std::sqrt(-2.0 * std::log(uniform())), angle = 2.0 * std::numbers::pi * uniform();
-        c(i) = r * std::cos(angle);
-        if (i + 1 < modes)
-            c(i + 1) = r * std::sin(angle);
-    }
+    for (int i = 0; i < modes; ++i)
+        c(i) = rng.normal();
     return c;
 }
 

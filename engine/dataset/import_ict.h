@@ -13,9 +13,9 @@
 // down to `v` lines are accepted) and must have the neutral's vertex count.
 //
 // Identities. Identity j is neutral + sum_i c_ji (identity_i - neutral) with c_ji ~ N(0, 1),
-// drawn from std::mt19937_64 seeded by (seed, j) through SplitMix64, and the Box-Muller
-// transform (written out here because std::normal_distribution differs between standard
-// libraries). Identity j does not depend on how many identities are drawn. Units become mm.
+// drawn from core/random.h's Random seeded by splitMix64(splitMix64(seed) ^ j), with
+// BoxMuller::PlusOne (portable: std::normal_distribution differs between standard libraries).
+// Identity j does not depend on how many identities are drawn. Units become mm.
 //
 // Region. The skin is a prefix of ICT's vertex order (README "Regions"): narrow face
 // [0, 6706), face [0, 9409) or head and neck [0, 11248). --with-eyes adds the eye sockets and

@@ -21,8 +21,8 @@
 // Every key is optional. Meshes are converted to mm. The labels are validated like a manifest
 // (errors name the labels file and the field).
 //
-// Roles. The samples are shuffled by a Fisher-Yates shuffle driven by std::mt19937_64(seed)
-// (index = rng() % (i + 1), so the order is the same with every standard library) and the
+// Roles. The samples are shuffled by Random(seed).permutation (core/random.h: Fisher-Yates on
+// std::mt19937_64(seed), the same order with every standard library) and the
 // shuffled order gets the roles of synth.h synthRoles: the thesis' 182 : 48 : 20 split of 250
 // scaled to the count, train first, then contour, then test. The manifest lists samples in
 // file-name order.

@@ -1,10 +1,10 @@
 #include "stats/bench_stats.h"
 
+#include "core/random.h"
 #include "core/stopwatch.h"
 #include "stats/conditional.h"
 #include "stats/face_model.h"
 #include "stats/mppca.h"
-#include "stats/random.h"
 
 #include <algorithm>
 #include <cmath>

@@ -5,11 +5,11 @@
 #include "model/head_model.h"
 
 #include "core/error.h"
+#include "core/random.h"
 #include "dataset/import_ict.h"
 #include "model/regions.h"
 #include "stats/evaluate.h"
 #include "stats/model_file.h"
-#include "stats/random.h"
 #include "trained.h"
 
 #include <catch2/catch.hpp>

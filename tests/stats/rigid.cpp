@@ -3,8 +3,8 @@
 #include "stats/rigid.h"
 
 #include "core/error.h"
+#include "core/random.h"
 #include "stats/model_file.h"
-#include "stats/random.h"
 #include "test_common.h"
 
 #include <Eigen/Geometry>
