@@ -1,12 +1,12 @@
 #include "contours/candidates_gpu.h"
 #include "contours/candidates.h"
 #include "contours/curvature_gpu.h"
-#include "core/random.h"
 #include "geometry/primitives.h"
 #include "test_common.h"
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <set>
 
 using namespace facesketch;
@@ -23,10 +23,11 @@ struct Batch {
 Batch bumpyTori(int count, int rings = 96, int sides = 48, double radiusStep = 1.0)
 {
     Batch b;
-    Random random(5);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> phase(0, 2 * M_PI);
     for (int m = 0; m < count; ++m) {
         Mesh t = makeTorus(30.0, 9.0 + radiusStep * m, rings, sides);
-        const double a = random.uniform(0, 2 * M_PI), c = random.uniform(0, 2 * M_PI);
+        const double a = phase(rng), c = phase(rng);
         for (Eigen::Index v = 0; v < t.V.rows(); ++v)
             t.V(v, 2) *= 1.0 + 0.2 * std::sin(0.15 * t.V(v, 0) + a) * std::cos(0.1 * t.V(v, 1) + c);
         for (Eigen::Index v = 0; v < t.V.rows(); ++v)
