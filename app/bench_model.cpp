@@ -4,7 +4,7 @@
 
 #include "core/random.h"
 #include "core/stopwatch.h"
-#include "dataset/synth.h"
+#include "dataset/synth/synth_dataset.h"
 #include "model/head_model.h"
 #include "stats/bench_stats.h"
 #include "stats/model_file.h"

@@ -5,7 +5,6 @@
 #include "core/random.h"
 #include "dataset/dataset.h"
 #include "dataset/simplify.h"
-#include "dataset/synth.h"
 #include "io/mesh_io.h"
 
 #include <nlohmann/json.hpp>
@@ -111,7 +110,7 @@ double readLabels(const fs::path& file, Manifest& m)
 
 std::vector<Role> shuffledRoles(int count, std::uint64_t seed)
 {
-    const std::vector<Role> roles = synthRoles(count);
+    const std::vector<Role> roles = splitRoles(count);
     const std::vector<int> order = Random(seed).permutation(count);
     std::vector<Role> out(static_cast<size_t>(count));
     for (int i = 0; i < count; ++i)

@@ -31,7 +31,7 @@ struct Norm {
 /// ch-ch, n-gn, n-sn, sn-sto.
 const std::vector<Norm>& farkasNorms();
 
-/// A small radial bump of "fine random detail", in the face chart (see face_model.h).
+/// A small radial bump of "fine random detail", in the face chart (see face_generator.h).
 struct DetailBump {
     double theta, phi; ///< centre, radians
     double radius;     ///< radians

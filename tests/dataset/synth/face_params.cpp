@@ -1,6 +1,6 @@
 // Population model of the synthetic faces: determinism, norms table (the portable generator
 // itself is tested in tests/core/random.cpp).
-#include "dataset/face_params.h"
+#include "dataset/synth/face_params.h"
 #include "test_common.h"
 
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "dataset/face_params.h"
+#include "dataset/synth/face_params.h"
 
 #include "core/random.h"
 
