@@ -5,7 +5,7 @@
 
 #include "core/stopwatch.h"
 #include "dataset/import_ict.h"
-#include "dataset/synth.h"
+#include "dataset/synth/synth_dataset.h"
 
 #include <cstdlib>
 #include <filesystem>

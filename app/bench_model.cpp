@@ -2,12 +2,12 @@
 // (issue 4). The statistics core alone (`bench stats`) is app/bench_stats.cpp.
 #include "bench.h"
 
+#include "core/random.h"
 #include "core/stopwatch.h"
-#include "dataset/synth.h"
+#include "dataset/synth/synth_dataset.h"
 #include "model/head_assembly.h"
 #include "model/head_model.h"
 #include "stats/model_file.h"
-#include "stats/random.h"
 
 #include <cstdlib>
 #include <filesystem>
@@ -52,7 +52,7 @@ void benchTrain(const BenchOptions& options, std::ostream& out)
         // One full reconstruction from 15% of a held-out face's skin vertices: every segment,
         // clean-up and correlation, blended, then the rigid parts placed.
         const Eigen::MatrixXd test = dataset::loadShapes(ds, dataset::Role::Test, "skin");
-        stats::Random random(7);
+        Random random(7);
         stats::Observations obs;
         for (Eigen::Index v = 0; v < model.vertexCount(); ++v)
             if (random.uniform() < 0.15)

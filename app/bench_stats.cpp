@@ -10,11 +10,11 @@
 // Takes a few seconds on one core.
 #include "bench.h"
 
+#include "core/random.h"
 #include "core/stopwatch.h"
 #include "stats/conditional.h"
 #include "stats/face_model.h"
 #include "stats/mppca.h"
-#include "stats/random.h"
 
 #include <cmath>
 #include <vector>

@@ -6,7 +6,7 @@
 
 #include "core/error.h"
 #include "core/stopwatch.h"
-#include "dataset/synth.h"
+#include "dataset/synth/synth_dataset.h"
 
 #include <filesystem>
 #include <iostream>

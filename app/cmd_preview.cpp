@@ -3,10 +3,10 @@
 // generator's own lip and brow colouring).
 
 #include "commands.h"
+#include "preview_grid.h"
 
 #include "core/error.h"
 #include "dataset/dataset.h"
-#include "render/renderer.h"
 
 #include <iostream>
 
@@ -36,35 +36,22 @@ void writeDatasetPreview(const PreviewOptions& o)
     const int n = std::min<int>(o.count, static_cast<int>(d.manifest.samples.size()));
     if (n == 0)
         fail(o.dataset, ": no samples to preview");
-    const int columns = std::min(n, 8), rows = (n + columns - 1) / columns, cell = o.size;
-    Image grid;
-    grid.width = columns * cell;
-    grid.height = rows * 2 * cell;
-    grid.pixels.assign(static_cast<size_t>(grid.width) * grid.height * 4, 255);
-
-    gpu::ScopedDevice device;
-    Renderer renderer(*device, cell, cell, 4);
     // One frame for every face (around the first face's skin), so sizes compare across the grid.
     Mesh first = dataset::loadMesh(d, d.manifest.samples[0].file);
     if (const dataset::Component* skin = d.manifest.component("skin"))
         first.V = first.V.middleRows(skin->begin, skin->size()).eval();
-    for (int i = 0; i < n; ++i) {
+    auto addFace = [&](Renderer& renderer, int i) {
         const Mesh mesh = dataset::loadMesh(d, d.manifest.samples[static_cast<size_t>(i)].file);
         std::vector<glm::vec4> colours(static_cast<size_t>(mesh.V.rows()), partColour("other"));
         for (const dataset::Component& c : d.manifest.components)
             for (int v = c.begin; v < c.end; ++v)
                 colours[static_cast<size_t>(v)] = partColour(c.name);
-        renderer.clear();
         renderer.addMesh(mesh, {}, colours);
-        for (int view = 0; view < 2; ++view) {
-            const Image image = renderer.render(
-                frameMesh(first, view ? ViewAngles { 90, 0 } : ViewAngles { 0, 0 }, cell, cell, Projection::Orthographic, 0.08));
-            const int x0 = (i % columns) * cell, y0 = ((i / columns) * 2 + view) * cell;
-            for (int y = 0; y < cell; ++y)
-                std::copy_n(image.at(0, y), 4 * cell, grid.at(x0, y0 + y));
-        }
-    }
-    writePng(o.output, grid);
+    };
+    auto camera = [&](int view) {
+        return frameMesh(first, view ? ViewAngles { 90, 0 } : ViewAngles { 0, 0 }, o.size, o.size, Projection::Orthographic, 0.08);
+    };
+    writePreviewGrid(o.output, n, o.size, addFace, camera);
     std::cout << "wrote " << o.output << " (" << n << " faces of " << o.dataset << ")\n";
 }
 

@@ -1,13 +1,12 @@
 // `facesketch synth`: the built-in synthetic face generator (issue 3 section 2) and its
 // preview grid (front and profile of each face, rendered offscreen).
 #include "commands.h"
+#include "preview_grid.h"
 
 #include "core/error.h"
 #include "core/stopwatch.h"
-#include "dataset/face_poses.h"
-#include "dataset/synth.h"
-#include "io/png.h"
-#include "render/renderer.h"
+#include "dataset/synth/pose_recipes.h"
+#include "dataset/synth/synth_dataset.h"
 
 #include <iostream>
 #include <map>
@@ -72,51 +71,36 @@ std::vector<glm::vec4> skinColours(const FaceTopology& t, glm::vec4 skin)
     return colours;
 }
 
-// Renders each face front (top row of a cell) and profile (bottom row), `columns` per row.
+// The preview grid (preview_grid.h) of `faces`, coloured by component, with the skin's lips and
+// brows and the eyes' iris and pupil, in one fixed frame for every face so sizes compare.
 void writePreview(const std::string& path, const FaceTopology& topology, const std::vector<Vertices>& faces, int cell)
 {
-    const int n = static_cast<int>(faces.size());
-    const int columns = std::min(n, 8), rows = (n + columns - 1) / columns;
-    Image grid;
-    grid.width = columns * cell;
-    grid.height = rows * 2 * cell;
-    grid.pixels.assign(static_cast<size_t>(grid.width) * grid.height * 4, 255);
-    gpu::ScopedDevice deviceOwner;
-    gpu::Device& device = *deviceOwner;
-    {
-        Renderer renderer(device, cell, cell, 4);
-        for (int i = 0; i < n; ++i)
-            for (int view = 0; view < 2; ++view) {
-                renderer.clear();
-                for (const Component& c : topology.labels.components) {
-                    MeshStyle style;
-                    style.color = componentColour(c.name);
-                    const Mesh part = componentMesh(faces[static_cast<size_t>(i)], topology.labels, c);
-                    std::vector<glm::vec4> colours;
-                    if (c.name == "skin")
-                        colours = skinColours(topology, style.color);
-                    if (c.name.rfind("eye", 0) == 0) {
-                        // Iris and pupil: eyeball vertices facing forward, so the eyes read as eyes.
-                        const Eigen::RowVector3d centre = part.V.colwise().mean();
-                        for (Eigen::Index v = 0; v < part.V.rows(); ++v) {
-                            const Eigen::RowVector3d d = (part.V.row(v) - centre).normalized();
-                            colours.push_back(d.z() > 0.97 ? glm::vec4(0.08f, 0.06f, 0.05f, 1)
-                                    : d.z() > 0.88         ? glm::vec4(0.33f, 0.22f, 0.12f, 1)
-                                                           : style.color);
-                        }
-                    }
-                    renderer.addMesh(part, style, colours);
+    auto addFace = [&](Renderer& renderer, int i) {
+        for (const Component& c : topology.labels.components) {
+            MeshStyle style;
+            style.color = componentColour(c.name);
+            const Mesh part = componentMesh(faces[static_cast<size_t>(i)], topology.labels, c);
+            std::vector<glm::vec4> colours;
+            if (c.name == "skin")
+                colours = skinColours(topology, style.color);
+            if (c.name.rfind("eye", 0) == 0) {
+                // Iris and pupil: eyeball vertices facing forward, so the eyes read as eyes.
+                const Eigen::RowVector3d centre = part.V.colwise().mean();
+                for (Eigen::Index v = 0; v < part.V.rows(); ++v) {
+                    const Eigen::RowVector3d d = (part.V.row(v) - centre).normalized();
+                    colours.push_back(d.z() > 0.97 ? glm::vec4(0.08f, 0.06f, 0.05f, 1)
+                            : d.z() > 0.88         ? glm::vec4(0.33f, 0.22f, 0.12f, 1)
+                                                   : style.color);
                 }
-                // One fixed frame for every face, so sizes compare across the grid.
-                const Camera camera = frameSphere({ 0, -35, view ? 20 : 40 }, 105, view ? ViewAngles { 90, 0 } : ViewAngles { 0, 0 }, cell,
-                    cell, Projection::Orthographic, 0.02);
-                const Image image = renderer.render(camera);
-                const int x0 = (i % columns) * cell, y0 = ((i / columns) * 2 + view) * cell;
-                for (int y = 0; y < cell; ++y)
-                    std::copy_n(image.at(0, y), 4 * cell, grid.at(x0, y0 + y));
             }
-    }
-    writePng(path, grid);
+            renderer.addMesh(part, style, colours);
+        }
+    };
+    auto camera = [&](int view) {
+        return frameSphere(
+            { 0, -35, view ? 20 : 40 }, 105, view ? ViewAngles { 90, 0 } : ViewAngles { 0, 0 }, cell, cell, Projection::Orthographic, 0.02);
+    };
+    writePreviewGrid(path, static_cast<int>(faces.size()), cell, addFace, camera);
 }
 
 } // namespace

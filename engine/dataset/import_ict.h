@@ -13,9 +13,9 @@
 // down to `v` lines are accepted) and must have the neutral's vertex count.
 //
 // Identities. Identity j is neutral + sum_i c_ji (identity_i - neutral) with c_ji ~ N(0, 1),
-// drawn from std::mt19937_64 seeded by (seed, j) through SplitMix64, and the Box-Muller
-// transform (written out here because std::normal_distribution differs between standard
-// libraries). Identity j does not depend on how many identities are drawn. Units become mm.
+// drawn from core/random.h's Random seeded by splitMix64(splitMix64(seed) ^ j), with
+// BoxMuller::PlusOne (portable: std::normal_distribution differs between standard libraries).
+// Identity j does not depend on how many identities are drawn. Units become mm.
 //
 // Region. The skin is a prefix of ICT's vertex order (README "Regions"): narrow face
 // [0, 6706), face [0, 9409) or head and neck [0, 11248). --with-eyes adds the eye sockets and
@@ -73,8 +73,9 @@
 // midline; 6.3 (left) and 6.4 (right) the vertices of greatest and least x among those whose
 // normal points up (the borders of the upper surface).
 //
-// Poses (--poses): 36 poses with the names of the synthetic set (face_poses.h), each a
-// weighted sum of ICT expression deltas, expression_k - neutral, added to the identity. The
+// Poses (--poses): 36 poses with the names of the synthetic set (synth/pose_recipes.h). A
+// pose's recipe here is a weighted sum of ICT blendshape deltas (ICT calls its blendshape files
+// "expressions": browDown_L.obj, ...), blendshape_k - neutral, added to the identity. The
 // recipes live in assets/ict-poses.json: {"pose name": {"blendshape": weight, ...}, ...}.
 
 #include "dataset/manifest.h"
@@ -107,7 +108,7 @@ struct IctOptions {
     std::filesystem::path recipes; ///< the pose recipe file (assets/ict-poses.json); needed with poses
 };
 
-/// Pose name -> {ICT expression name -> weight}, in file order.
+/// The pose recipes: pose name -> {ICT blendshape name -> weight}, in file order.
 using IctPoseRecipes = std::vector<std::pair<std::string, std::map<std::string, double>>>;
 
 /// Reads a recipe file; throws Error naming the file and field for bad JSON, an empty or
@@ -119,12 +120,12 @@ struct IctModel {
     Manifest labels;                                       ///< vertexCount, topology, components, landmarks, mpeg4, contours, excluded
     Vertices neutral;                                      ///< #V by 3, mm
     Eigen::MatrixXd identityModes;                         ///< 3#V by #modes, column i = flatten(identity_i - neutral), mm
-    std::map<std::string, Eigen::RowVectorXd> expressions; ///< name -> flatten(expression - neutral), 1 by 3#V, mm
+    std::map<std::string, Eigen::RowVectorXd> blendshapes; ///< name -> flatten(blendshape - neutral), 1 by 3#V, mm
 };
 
-/// Reads the model at `path` (see above) and the expressions named in `expressions`.
+/// Reads the model at `path` (see above) and the blendshapes named in `blendshapes`.
 /// Throws Error naming the file (and line, for malformed `v` lines) on bad input.
-IctModel loadIctModel(const std::filesystem::path& path, const IctOptions& options, const std::vector<std::string>& expressions = {});
+IctModel loadIctModel(const std::filesystem::path& path, const IctOptions& options, const std::vector<std::string>& blendshapes = {});
 
 /// The #modes coefficients of identity `index`: independent N(0, 1) draws (see above).
 Eigen::VectorXd ictCoefficients(std::uint64_t seed, int index, int modes);
@@ -132,11 +133,12 @@ Eigen::VectorXd ictCoefficients(std::uint64_t seed, int index, int modes);
 /// neutral + identityModes * coefficients, #V by 3, mm.
 Vertices ictIdentity(const IctModel& model, const Eigen::VectorXd& coefficients);
 
-/// identity + sum_k weight_k * expressions[k]; throws Error if an expression was not loaded.
+/// The pose of `identity` that `recipe` makes: identity + sum_k weight_k * blendshapes[k];
+/// throws Error if a blendshape was not loaded.
 Vertices ictPose(const IctModel& model, const Vertices& identity, const std::map<std::string, double>& recipe);
 
 /// Writes the dataset folder atomically (dataset.h writeDataset): samples "face_0000"... in
-/// "faces/", roles as synth.h synthRoles (182 : 48 : 20, train first), poses in
+/// "faces/", roles as manifest.h splitRoles (182 : 48 : 20, train first), poses in
 /// "poses/<sample>/<pose>.ply". Deterministic: equal options give byte-identical folders.
 /// Returns the manifest written.
 Manifest writeIctDataset(const std::filesystem::path& path, const std::filesystem::path& output, const IctOptions& options);

@@ -2,9 +2,9 @@
 #include "dataset/import_meshes.h"
 
 #include "core/error.h"
+#include "core/random.h"
 #include "dataset/dataset.h"
 #include "dataset/simplify.h"
-#include "dataset/synth.h"
 #include "io/mesh_io.h"
 
 #include <nlohmann/json.hpp>
@@ -13,7 +13,6 @@
 #include <cctype>
 #include <fstream>
 #include <limits>
-#include <random>
 #include <set>
 
 namespace facesketch::dataset {
@@ -111,13 +110,8 @@ double readLabels(const fs::path& file, Manifest& m)
 
 std::vector<Role> shuffledRoles(int count, std::uint64_t seed)
 {
-    const std::vector<Role> roles = synthRoles(count);
-    std::vector<int> order(static_cast<size_t>(count));
-    for (int i = 0; i < count; ++i)
-        order[static_cast<size_t>(i)] = i;
-    std::mt19937_64 rng(seed);
-    for (int i = count - 1; i > 0; --i)
-        std::swap(order[static_cast<size_t>(i)], order[static_cast<size_t>(rng() % static_cast<std::uint64_t>(i + 1))]);
+    const std::vector<Role> roles = splitRoles(count);
+    const std::vector<int> order = Random(seed).permutation(count);
     std::vector<Role> out(static_cast<size_t>(count));
     for (int i = 0; i < count; ++i)
         out[static_cast<size_t>(order[static_cast<size_t>(i)])] = roles[static_cast<size_t>(i)];

@@ -21,9 +21,9 @@
 // Every key is optional. Meshes are converted to mm. The labels are validated like a manifest
 // (errors name the labels file and the field).
 //
-// Roles. The samples are shuffled by a Fisher-Yates shuffle driven by std::mt19937_64(seed)
-// (index = rng() % (i + 1), so the order is the same with every standard library) and the
-// shuffled order gets the roles of synth.h synthRoles: the thesis' 182 : 48 : 20 split of 250
+// Roles. The samples are shuffled by Random(seed).permutation (core/random.h: Fisher-Yates on
+// std::mt19937_64(seed), the same order with every standard library) and the
+// shuffled order gets the roles of manifest.h splitRoles: the thesis' 182 : 48 : 20 split of 250
 // scaled to the count, train first, then contour, then test. The manifest lists samples in
 // file-name order.
 
@@ -40,7 +40,7 @@ struct MeshImportOptions {
     std::filesystem::path labels; ///< labels file; empty: DIR/landmarks.json if it exists
 };
 
-/// Roles for `count` samples in file order: synthRoles(count) dealt out by the seeded shuffle.
+/// Roles for `count` samples in file order: splitRoles(count) dealt out by the seeded shuffle.
 std::vector<Role> shuffledRoles(int count, std::uint64_t seed);
 
 /// Reads the folder (see above) and writes the dataset folder `output` atomically

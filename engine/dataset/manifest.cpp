@@ -6,12 +6,26 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <set>
 
 namespace facesketch::dataset {
 
 using nlohmann::json;
+
+std::vector<Role> splitRoles(int identities)
+{
+    if (identities < 1)
+        fail("roles: --identities ", identities, " must be at least 1");
+    const int contour = static_cast<int>(std::lround(identities * 48.0 / 250.0));
+    const int test = static_cast<int>(std::lround(identities * 20.0 / 250.0));
+    const int train = identities - contour - test;
+    std::vector<Role> roles(static_cast<size_t>(train), Role::Train);
+    roles.insert(roles.end(), static_cast<size_t>(contour), Role::Contour);
+    roles.insert(roles.end(), static_cast<size_t>(test), Role::Test);
+    return roles;
+}
 
 const char* roleName(Role role)
 {

@@ -28,6 +28,11 @@ const char* roleName(Role role);
 /// Inverse of roleName; throws Error naming `text` otherwise.
 Role parseRole(const std::string& text);
 
+/// Roles of `identities` samples in order: the thesis' 182 : 48 : 20 split scaled to the count
+/// (exactly 182, 48, 20 for 250; contour and test rounded), train first, then contour, then
+/// test. Used by `synth` and both importers. Throws Error if identities < 1.
+std::vector<Role> splitRoles(int identities);
+
 /// A named, half-open range [begin, end) of vertex indices, e.g. "skin" or "eye_left".
 struct Component {
     std::string name;
@@ -45,7 +50,10 @@ struct Sample {
     Role role = Role::Train;
 };
 
-/// One pose (expression or viseme) of the sample called `identity`.
+/// One pose of the sample called `identity`: a named expression or viseme of that identity,
+/// stored as one mesh. (How a pose is made, e.g. from FaceActions or ICT blendshape weights, is
+/// its recipe: synth/pose_recipes.h, import_ict.h.) Not a head rotation. Written to disk as an
+/// entry of the manifest's "poses" array (docs/dataset-format.md); the key keeps that name.
 struct Pose {
     std::string identity;
     std::string name;

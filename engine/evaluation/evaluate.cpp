@@ -1,9 +1,9 @@
 #include "evaluation/evaluate.h"
 
 #include "core/error.h"
+#include "core/random.h"
 #include "core/stopwatch.h"
 #include "stats/check.h"
-#include "stats/random.h"
 
 #include <algorithm>
 

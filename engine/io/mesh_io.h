@@ -24,6 +24,11 @@ void writeMesh(const std::filesystem::path& path, const Mesh& mesh);
 /// OBJ: `v x y z` lines (extra w or colour columns ignored), `f` lines with 1-based or negative
 /// indices in any of the v, v/vt, v//vn, v/vt/vn forms.
 Mesh readObj(const std::filesystem::path& path);
+/// The `v` lines of an OBJ file only, as #V by 3 in file units, parsed in double precision
+/// (readObj keeps tinyobjloader's float precision); every other statement is skipped, so files
+/// cut down to their `v` lines are read too. Throws Error "FILE:LINE: vertex coordinate y is
+/// missing or not a number: '<line>'" (or "... is nan") on a bad `v` line.
+Vertices readObjVertices(const std::filesystem::path& path);
 /// Writes `v` lines with 9 significant digits, then `f` lines (1-based).
 void writeObj(const std::filesystem::path& path, const Mesh& mesh);
 

@@ -1,6 +1,8 @@
 // Wavefront OBJ through tinyobjloader, with a line-level check of our own first: tinyobjloader
 // reads a missing coordinate as 0 and an out-of-range index as whatever it finds, and reports
 // no line numbers, while our users need "file:line: what" for every bad statement.
+// readObjVertices is a reader of its own: `v` lines only, parsed in double precision
+// (tinyobjloader's are float), fast enough for the ICT model's 100+ files of 26,719 vertices.
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -14,6 +16,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 
 namespace facesketch {
 
@@ -117,6 +120,47 @@ Mesh readObj(const std::filesystem::path& path)
         mesh.F.row(static_cast<Eigen::Index>(t)) << triangles[t][0], triangles[t][1], triangles[t][2];
     validateMesh(mesh, path.string());
     return mesh;
+}
+
+Vertices readObjVertices(const std::filesystem::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        fail(path.string(), ": cannot open");
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    const std::string text = buffer.str();
+    std::vector<double> xyz;
+    long line = 0;
+    size_t pos = 0;
+    while (pos < text.size()) {
+        size_t end = text.find('\n', pos);
+        if (end == std::string::npos)
+            end = text.size();
+        ++line;
+        const char* p = text.data() + pos;
+        const char* e = text.data() + end;
+        pos = end + 1;
+        if (e - p < 2 || p[0] != 'v' || (p[1] != ' ' && p[1] != '\t'))
+            continue;
+        const std::string_view lineText(p, static_cast<size_t>(e - p));
+        p += 2;
+        for (int c = 0; c < 3; ++c) {
+            while (p < e && (*p == ' ' || *p == '\t'))
+                ++p;
+            double value = 0;
+            const auto [next, ec] = std::from_chars(p, e, value);
+            if (ec != std::errc() || (next < e && *next != ' ' && *next != '\t' && *next != '\r'))
+                fail(path.string(), ":", line, ": vertex coordinate ", "xyz"[c], " is missing or not a number: '", lineText, "'");
+            if (!std::isfinite(value))
+                fail(path.string(), ":", line, ": vertex coordinate ", "xyz"[c], " is ", value);
+            xyz.push_back(value);
+            p = next;
+        }
+    }
+    Vertices V(static_cast<Eigen::Index>(xyz.size() / 3), 3);
+    std::copy(xyz.begin(), xyz.end(), V.data());
+    return V;
 }
 
 void writeObj(const std::filesystem::path& path, const Mesh& mesh)

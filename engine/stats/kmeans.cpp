@@ -1,8 +1,8 @@
 #include "stats/kmeans.h"
 
 #include "core/error.h"
+#include "core/random.h"
 #include "stats/check.h"
-#include "stats/random.h"
 
 #include <algorithm>
 #include <cmath>

@@ -12,7 +12,7 @@
 //   (the alternative seeding used for the restarts of stats/mppca).
 //
 // Everything is deterministic: the K-medoids seeding has no randomness and the K-means++
-// seeding draws from a seeded stats::Random; ties go to the lowest index.
+// seeding draws from a seeded Random (core/random.h); ties go to the lowest index.
 //
 // Samples are rows. When d >= n the work is done on the n by n Gram matrix of the centred
 // samples, so one iteration costs O(n^2 K) whatever d (the Gram matrix costs O(n^2 d) once):
@@ -71,7 +71,7 @@ struct KMeansResult {
 std::vector<int> kmedoidsSeeds(const Eigen::MatrixXd& G, int K);
 
 /// K-means++ seeding on a Gram matrix (Arthur and Vassilvitskii 2007), drawn from
-/// stats::Random(seed). Returns K distinct sample indices; 1 <= K <= n.
+/// Random(seed). Returns K distinct sample indices; 1 <= K <= n.
 std::vector<int> kmeansPlusPlusSeeds(const Eigen::MatrixXd& G, int K, std::uint64_t seed);
 
 /// K-means from the seeds of options.seeding, working on a Gram matrix.

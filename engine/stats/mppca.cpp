@@ -1,9 +1,9 @@
 #include "stats/mppca.h"
 
 #include "core/error.h"
+#include "core/random.h"
 #include "stats/check.h"
 #include "stats/kmeans.h"
-#include "stats/random.h"
 
 #include <Eigen/Cholesky>
 #include <algorithm>

@@ -1,6 +1,7 @@
 #include "contours/curvature_gpu.h"
 #include "contours/curvature.h"
 #include "core/error.h"
+#include "core/random.h"
 #include "geometry/mesh_batch.h"
 #include "geometry/primitives.h"
 #include "geometry/wedges.h"
@@ -11,7 +12,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <random>
 
 using namespace facesketch;
 
@@ -21,11 +21,10 @@ namespace {
 std::vector<Mesh> bumpyTori()
 {
     std::vector<Mesh> meshes;
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<double> phase(0, 2 * M_PI);
+    Random random(11);
     for (int m = 0; m < 3; ++m) {
         Mesh t = makeTorus(30.0, 10.0 + 2 * m, 96, 48);
-        const double a = phase(rng), b = phase(rng);
+        const double a = random.uniform(0, 2 * M_PI), b = random.uniform(0, 2 * M_PI);
         for (Eigen::Index v = 0; v < t.V.rows(); ++v) {
             const double x = t.V(v, 0), y = t.V(v, 1);
             t.V(v, 2) *= 1.0 + 0.15 * std::sin(0.1 * x + a) * std::cos(0.08 * y + b);

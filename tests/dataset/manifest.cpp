@@ -132,3 +132,14 @@ TEST_CASE("manifest: unreadable and malformed files name the file")
     REQUIRE_THROWS_WITH(writeManifest(dir / "m.json", m), Catch::Contains("landmarks.prn: vertex 42 outside [0, 6)"));
     REQUIRE(!std::filesystem::exists(dir / "m.json"));
 }
+
+TEST_CASE("manifest: splitRoles is the thesis' 182/48/20 split")
+{
+    const auto roles = splitRoles(250);
+    REQUIRE(std::count(roles.begin(), roles.end(), Role::Train) == 182);
+    REQUIRE(std::count(roles.begin(), roles.end(), Role::Contour) == 48);
+    REQUIRE(std::count(roles.begin(), roles.end(), Role::Test) == 20);
+    REQUIRE(splitRoles(1).size() == 1);
+    REQUIRE(splitRoles(1)[0] == Role::Train);
+    REQUIRE_THROWS_WITH(splitRoles(0), Catch::Contains("--identities 0"));
+}

@@ -3,9 +3,9 @@
 #include "dataset/simplify.h"
 #include "core/error.h"
 #include "dataset/dataset.h"
-#include "dataset/face_model.h"
-#include "dataset/face_params.h"
-#include "dataset/synth.h"
+#include "dataset/synth/face_generator.h"
+#include "dataset/synth/face_params.h"
+#include "dataset/synth/synth_dataset.h"
 #include "io/mesh_io.h"
 #include "test_common.h"
 

@@ -1,23 +1,22 @@
 #include "geometry/normals_gpu.h"
 #include "core/error.h"
+#include "core/random.h"
 #include "geometry/normals.h"
 #include "geometry/primitives.h"
 #include "test_common.h"
 
 #include <cmath>
-#include <random>
 
 using namespace facesketch;
 
 // A batch of distinct, bumpy spheres: 5 meshes x 642 vertices (neither a multiple of 64).
 static std::vector<float> bumpySpheres(const Mesh& s, int meshes)
 {
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<double> u(0.8, 1.2);
+    Random random(7);
     std::vector<float> positions;
     for (int m = 0; m < meshes; ++m)
         for (Eigen::Index v = 0; v < s.V.rows(); ++v) {
-            const double r = u(rng);
+            const double r = random.uniform(0.8, 1.2);
             for (int c = 0; c < 3; ++c)
                 positions.push_back(static_cast<float>(s.V(v, c) * r * (1 + 0.5 * m * (c == 0))));
         }

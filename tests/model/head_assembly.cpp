@@ -4,7 +4,7 @@
 
 #include "core/error.h"
 #include "geometry/similarity.h"
-#include "stats/random.h"
+#include "core/random.h"
 
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
@@ -12,7 +12,7 @@
 using namespace facesketch;
 using namespace facesketch::model;
 using stats::HeadLayout;
-using stats::Random;
+
 
 namespace {
 

@@ -5,12 +5,12 @@
 #include "model/head_model.h"
 
 #include "core/error.h"
+#include "core/random.h"
 #include "dataset/import_ict.h"
 #include "evaluation/evaluate.h"
 #include "model/head_assembly.h"
 #include "model/regions.h"
 #include "stats/model_file.h"
-#include "stats/random.h"
 #include "trained.h"
 
 #include <catch2/catch.hpp>

@@ -3,7 +3,7 @@
 // folder, shared by the tests of one process (ctest runs each test case in its own process,
 // so each pays about a second or two for it).
 #include "dataset/dataset.h"
-#include "dataset/synth.h"
+#include "dataset/synth/synth_dataset.h"
 #include "model/head_model.h"
 #include "test_common.h"
 

@@ -4,7 +4,7 @@
 #include "stats/face_model.h"
 
 #include "core/error.h"
-#include "stats/random.h"
+#include "core/random.h"
 #include "synthetic_faces.h"
 
 #include <algorithm>

@@ -3,7 +3,7 @@
 #include "stats/kmeans.h"
 
 #include "core/error.h"
-#include "stats/random.h"
+#include "core/random.h"
 
 #include <catch2/catch.hpp>
 #include <limits>

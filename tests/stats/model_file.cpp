@@ -2,7 +2,7 @@
 #include "stats/model_file.h"
 
 #include "core/error.h"
-#include "stats/random.h"
+#include "core/random.h"
 #include "test_common.h"
 
 #include <catch2/catch.hpp>

@@ -2,8 +2,8 @@
 // Test data for the statistics tests: random PPCA models and mixtures, samples drawn from
 // them, and dense textbook reference computations (full d by d covariances; small d only).
 
+#include "core/random.h"
 #include "stats/mppca.h"
-#include "stats/random.h"
 
 #include <Eigen/Cholesky>
 #include <Eigen/QR>
@@ -14,7 +14,7 @@
 namespace facesketch::test {
 
 /// A PPCA with a random mean of scale meanScale, loadings of about `scale` per coordinate.
-inline stats::Ppca randomPpca(stats::Random& random, Eigen::Index d, int q, double meanScale, double scale, double sigma2)
+inline stats::Ppca randomPpca(Random& random, Eigen::Index d, int q, double meanScale, double scale, double sigma2)
 {
     stats::Ppca p;
     p.mean = meanScale * random.normalMatrix(d, 1);
@@ -24,7 +24,7 @@ inline stats::Ppca randomPpca(stats::Random& random, Eigen::Index d, int q, doub
 }
 
 /// n samples (rows) from the mixture; labels(i) is the component that drew sample i.
-inline Eigen::MatrixXd sampleMixture(stats::Random& random, const stats::Mppca& model, Eigen::Index n, Eigen::VectorXi& labels)
+inline Eigen::MatrixXd sampleMixture(Random& random, const stats::Mppca& model, Eigen::Index n, Eigen::VectorXi& labels)
 {
     const Eigen::Index d = model.dim();
     Eigen::MatrixXd X(n, d);

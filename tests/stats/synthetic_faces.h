@@ -4,7 +4,7 @@
 // width variation and 0.2 mm noise per coordinate. Millimetres, x to the face's left, y up.
 
 #include "core/mesh.h"
-#include "stats/random.h"
+#include "core/random.h"
 
 #include <Eigen/Core>
 #include <cmath>
@@ -30,7 +30,7 @@ inline Triangles gridTriangles()
 }
 
 // n faces, one per row (x0, y0, z0, x1, ...).
-inline Eigen::MatrixXd syntheticFaces(stats::Random& random, int n)
+inline Eigen::MatrixXd syntheticFaces(Random& random, int n)
 {
     Eigen::MatrixXd faces(n, 3 * kSide * kSide);
     for (int f = 0; f < n; ++f) {

@@ -10,32 +10,14 @@
 // Age (uniform 20..65 years) thins the lips, lengthens and drops the nose and narrows the
 // eye opening; sex shifts means and brow, jaw and chin prominence.
 //
-// Randomness: std::mt19937_64 (its output sequence is fixed by the C++ standard) and our own
-// Box-Muller normal, so identical seeds give identical faces on every standard library.
+// Randomness: the portable core/random.h generator (BoxMuller::RedrawZero), so identical seeds
+// give identical faces on every standard library.
 
 #include <cstdint>
-#include <random>
 #include <string>
 #include <vector>
 
 namespace facesketch::dataset {
-
-/// Portable, deterministic random numbers (std::normal_distribution differs between libraries).
-class Rng {
-public:
-    explicit Rng(std::uint64_t seed);
-    /// Uniform in [0, 1) with 53 random bits.
-    double uniform();
-    /// Uniform in [lo, hi).
-    double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
-    /// Standard normal (Box-Muller; the second value of each pair is kept for the next call).
-    double normal();
-
-private:
-    std::mt19937_64 engine_;
-    double spare_ = 0;
-    bool hasSpare_ = false;
-};
 
 /// One adult anthropometric norm: a distance between two landmarks, mean and SD in mm by sex.
 struct Norm {
@@ -49,7 +31,7 @@ struct Norm {
 /// ch-ch, n-gn, n-sn, sn-sto.
 const std::vector<Norm>& farkasNorms();
 
-/// A small radial bump of "fine random detail", in the face chart (see face_model.h).
+/// A small radial bump of "fine random detail", in the face chart (see face_generator.h).
 struct DetailBump {
     double theta, phi; ///< centre, radians
     double radius;     ///< radians

@@ -1,8 +1,8 @@
-// Topology of the synthetic face (face_model.h): the skin grid with its eye and mouth slits,
+// Topology of the synthetic face (face_generator.h): the skin grid with its eye and mouth slits,
 // eyeballs, dental arches and tongue, and the labels every face of a resolution shares:
 // craniofacial landmarks (thesis Table 3.1), the 46 MPEG-4 feature points used for posing
 // (thesis 5.2: 40 skin, 4 tongue, 2 lower teeth) and the labelled contours (thesis 4.3.3).
-#include "dataset/face_model.h"
+#include "dataset/synth/face_generator.h"
 
 #include "core/error.h"
 #include "core/names.h"
@@ -104,9 +104,8 @@ void addTube(std::vector<Eigen::Vector3i>& tris, int base, int samples, int sect
         tris.emplace_back(end, ring(samples - 1, j), ring(samples - 1, j + 1));
 }
 
-} // namespace
-
-FaceTopology buildFaceTopology(Resolution resolution)
+// The grid's size, knot rows and columns, and the closed parts' resolutions.
+FaceTopology layout(Resolution resolution)
 {
     const Spec sp = spec(resolution);
     FaceTopology t;
@@ -114,9 +113,8 @@ FaceTopology buildFaceTopology(Resolution resolution)
     t.sEn = sp.colSegments[0];
     t.sCh = t.sEn + sp.colSegments[1];
     t.sEx = t.sCh + sp.colSegments[2];
-    const int half = t.sEx + sp.colSegments[3];
-    t.mid = half;
-    t.cols = 2 * half + 1;
+    t.mid = t.sEx + sp.colSegments[3];
+    t.cols = 2 * t.mid + 1;
     t.rowKnot.push_back(0);
     for (int k = 0; k < 11; ++k)
         t.rowKnot.push_back(t.rowKnot.back() + sp.rowSegments[k]);
@@ -127,10 +125,13 @@ FaceTopology buildFaceTopology(Resolution resolution)
     t.archSection = sp.archSection;
     t.tongueRings = sp.tongueRings;
     t.tongueSegments = sp.tongueSegments;
-    const int kBrow = t.rowKnot[1], kN = t.rowKnot[2], kEye = t.rowKnot[3], kPrn = t.rowKnot[4], kSn = t.rowKnot[5], kLs = t.rowKnot[6],
-              kSto = t.rowKnot[7], kLi = t.rowKnot[8], kPg = t.rowKnot[9], kGn = t.rowKnot[10];
+    return t;
+}
 
-    // Skin vertices: the grid, then lower slit copies in lowerCopy()'s order.
+// Skin vertices (the grid, then lower slit copies in lowerCopy()'s order) and their triangles.
+void addSkin(FaceTopology& t, std::vector<Eigen::Vector3i>& tris)
+{
+    const int kEye = t.rowKnot[3], kSto = t.rowKnot[7];
     for (int r = 0; r < t.rows; ++r)
         for (int c = 0; c < t.cols; ++c) {
             const bool slit = t.lowerCopy(r, c) >= 0;
@@ -147,7 +148,6 @@ FaceTopology buildFaceTopology(Resolution resolution)
         if (t.lowerCopy(t.skin[i].row, t.skin[i].col) != i)
             fail("buildFaceTopology: slit copy ", i, " misplaced (internal error)");
 
-    std::vector<Eigen::Vector3i> tris;
     for (int r = 0; r + 1 < t.rows; ++r)
         for (int c = 0; c + 1 < t.cols; ++c) {
             // Cells below a slit use the slit's lower copies.
@@ -164,8 +164,14 @@ FaceTopology buildFaceTopology(Resolution resolution)
                 tris.emplace_back(b, cc, d);
             }
         }
+}
 
+// The components (skin, then eyeballs, dental arches and tongue after it), the vertex count
+// and the triangle list of the manifest.
+void addParts(FaceTopology& t, std::vector<Eigen::Vector3i>& tris)
+{
     Manifest& m = t.labels;
+    const int nSkin = static_cast<int>(t.skin.size());
     int next = nSkin;
     m.components.push_back({ "skin", 0, nSkin });
     const int eyeCount = 2 + t.eyeRings * t.eyeSegments;
@@ -189,8 +195,14 @@ FaceTopology buildFaceTopology(Resolution resolution)
     m.topology.resize(static_cast<Eigen::Index>(tris.size()), 3);
     for (size_t i = 0; i < tris.size(); ++i)
         m.topology.row(static_cast<Eigen::Index>(i)) = tris[i].transpose();
+}
 
-    // Landmarks. Suffix _l is the face's own left (+x), as in thesis Table 3.1.
+// Craniofacial landmarks (thesis Table 3.1). Suffix _l is the face's own left (+x).
+void labelLandmarks(FaceTopology& t)
+{
+    Manifest& m = t.labels;
+    const int kBrow = t.rowKnot[1], kN = t.rowKnot[2], kEye = t.rowKnot[3], kPrn = t.rowKnot[4], kSn = t.rowKnot[5], kLs = t.rowKnot[6],
+              kSto = t.rowKnot[7], kLi = t.rowKnot[8], kPg = t.rowKnot[9], kGn = t.rowKnot[10];
     const int mid = t.mid, sEye = (t.sEn + t.sEx) / 2;
     auto g = [&](int r, int s) { return t.grid(r, mid + s); };
     auto low = [&](int r, int s) { return t.lowerCopy(r, mid + s); };
@@ -222,9 +234,17 @@ FaceTopology buildFaceTopology(Resolution resolution)
     both("ch", kSto, t.sCh);
     const int sCph = std::max(1, static_cast<int>(std::lround(t.sCh * 0.2)));
     both("cph", kLs, sCph);
-    both("obs", kEye + 1, half);
+    both("obs", kEye + 1, t.mid);
+}
 
-    // Contours (thesis 4.3.3).
+// The labelled contours (thesis 4.3.3) and the vertices never used as contour candidates.
+void labelContours(FaceTopology& t)
+{
+    Manifest& m = t.labels;
+    const int kBrow = t.rowKnot[1], kEye = t.rowKnot[3], kPrn = t.rowKnot[4], kSn = t.rowKnot[5], kLs = t.rowKnot[6], kSto = t.rowKnot[7],
+              kLi = t.rowKnot[8], kGn = t.rowKnot[10];
+    auto g = [&](int r, int s) { return t.grid(r, t.mid + s); };
+    auto low = [&](int r, int s) { return t.lowerCopy(r, t.mid + s); };
     auto& C = m.contours;
     for (int side : { 1, -1 }) {
         const std::string sfx = side > 0 ? "_l" : "_r";
@@ -278,9 +298,18 @@ FaceTopology buildFaceTopology(Resolution resolution)
             m.excluded.push_back(g(r, s));
     std::sort(m.excluded.begin(), m.excluded.end());
     m.excluded.erase(std::unique(m.excluded.begin(), m.excluded.end()), m.excluded.end());
+}
 
-    // MPEG-4 feature points (thesis 5.2; group.point numbering of ISO/IEC 14496-2 Annex C,
-    // with the thesis' Table 3.1 assignment of 3.7/3.8/3.11/3.12).
+// MPEG-4 feature points (thesis 5.2; group.point numbering of ISO/IEC 14496-2 Annex C, with
+// the thesis' Table 3.1 assignment of 3.7/3.8/3.11/3.12). Needs the landmarks and contours.
+void labelMpeg4(FaceTopology& t)
+{
+    Manifest& m = t.labels;
+    const int kBrow = t.rowKnot[1], kEye = t.rowKnot[3], kPrn = t.rowKnot[4], kSto = t.rowKnot[7];
+    const int sEye = (t.sEn + t.sEx) / 2;
+    auto g = [&](int r, int s) { return t.grid(r, t.mid + s); };
+    auto low = [&](int r, int s) { return t.lowerCopy(r, t.mid + s); };
+    const auto& C = m.contours;
     auto& M = m.mpeg4;
     auto& L = m.landmarks;
     M["2.1"] = L["gn"];
@@ -313,8 +342,8 @@ FaceTopology buildFaceTopology(Resolution resolution)
     M["8.2"] = L["li"];
     M["8.3"] = L["ch_l"];
     M["8.4"] = L["ch_r"];
-    const auto& upperOuter = C["lip_upper_outer"];
-    const auto& lowerOuter = C["lip_lower_outer"];
+    const auto& upperOuter = C.at("lip_upper_outer");
+    const auto& lowerOuter = C.at("lip_lower_outer");
     M["8.5"] = upperOuter[static_cast<size_t>(t.sCh + t.sCh / 2)];
     M["8.6"] = upperOuter[static_cast<size_t>(t.sCh - t.sCh / 2)];
     M["8.7"] = lowerOuter[static_cast<size_t>(t.sCh + t.sCh / 2)];
@@ -338,6 +367,19 @@ FaceTopology buildFaceTopology(Resolution resolution)
     auto archTop = [&](int i) { return lowerTeeth->begin + 1 + i * t.archSection; };
     M["9.10"] = archTop(t.archSamples / 2);
     M["9.11"] = archTop(t.archSamples / 2 + std::max(1, t.archSamples / 5));
+}
+
+} // namespace
+
+FaceTopology buildFaceTopology(Resolution resolution)
+{
+    FaceTopology t = layout(resolution);
+    std::vector<Eigen::Vector3i> tris;
+    addSkin(t, tris);
+    addParts(t, tris);
+    labelLandmarks(t);
+    labelContours(t);
+    labelMpeg4(t);
     return t;
 }
 

@@ -1,8 +1,8 @@
 // Geometry of the synthetic faces: proportions against Farkas' adult norms, landmarks on their
 // features, and meshes free of degenerate, flipped and intersecting triangles.
 #include "core/error.h"
-#include "dataset/face_model.h"
 #include "dataset/mesh_quality.h"
+#include "dataset/synth/face_generator.h"
 #include "face_checks.h"
 #include "test_common.h"
 

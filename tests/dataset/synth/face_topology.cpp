@@ -1,5 +1,5 @@
 // The shared structure of each resolution: sizes, components, slits and labels.
-#include "dataset/face_model.h"
+#include "dataset/synth/face_generator.h"
 #include "test_common.h"
 
 #include <map>

@@ -6,7 +6,7 @@
 // Sources: Farkas LG, Anthropometry of the Head and Face, 2nd ed., 1994 (the targets); the
 // profile curve is the Fritsch-Carlson monotone cubic (Fritsch FN, Carlson RE, SIAM J. Numer.
 // Anal. 17(2), 1980).
-#include "dataset/face_frame.h"
+#include "dataset/synth/face_frame.h"
 
 namespace facesketch::dataset::detail {
 

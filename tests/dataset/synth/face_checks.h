@@ -1,8 +1,8 @@
 #pragma once
-// Mesh checks shared by the synthetic-face tests (face_shape.cpp, face_poses.cpp).
+// Mesh checks shared by the synthetic-face tests (face_shape.cpp, pose_recipes.cpp).
 
-#include "dataset/face_model.h"
 #include "dataset/mesh_quality.h"
+#include "dataset/synth/face_generator.h"
 
 #include <catch2/catch.hpp>
 #include <string>
@@ -11,7 +11,7 @@ namespace facesketch::dataset::checks {
 
 // Degenerate, flipped, folded and intersecting triangles.
 // Flipped, for a neutral face (`reference` null): the skin is star-shaped about the origin
-// (face_model.h) so no skin triangle may face it; eyeballs and tongue face away from their
+// (face_generator.h) so no skin triangle may face it; eyeballs and tongue face away from their
 // centroids; the teeth keep the orientation of `teethReference` (any face of the topology).
 // For a pose, `reference` is the same face with only the pose's jaw rotation, and no
 // triangle may turn more than 90 degrees from it: the rigid jaw rotation is factored out, and

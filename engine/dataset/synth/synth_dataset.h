@@ -1,10 +1,10 @@
 #pragma once
-// `facesketch synth`: writes a standardised dataset of synthetic faces (face_model.h) in the
+// `facesketch synth`: writes a standardised dataset of synthetic faces (face_generator.h) in the
 // dataset format (docs/dataset-format.md). Deterministic: the same options give byte-identical
 // files, whatever the number of threads.
 
-#include "dataset/face_model.h"
 #include "dataset/manifest.h"
+#include "dataset/synth/face_generator.h"
 
 #include <cstdint>
 #include <filesystem>
@@ -17,14 +17,10 @@ struct SynthOptions {
     int identities = 250; ///< thesis 3.1: 182 train + 48 contour (+ 20 test)
     Resolution resolution = Resolution::Low;
     std::uint64_t seed = 1;
-    bool poses = false;      ///< write the 36 poses of each posed identity
+    bool poses = false;      ///< write the 36 poses (pose_recipes.h) of each posed identity
     int poseIdentities = -1; ///< how many identities get poses (-1: all)
     int threads = 0;         ///< 0: one per hardware thread
 };
-
-/// Roles of `identities` samples in order: the thesis' 182 : 48 : 20 split scaled to the count
-/// (exactly 182, 48, 20 for 250), train first, then contour, then test.
-std::vector<Role> synthRoles(int identities);
 
 /// The manifest of a synthetic dataset (topology, labels, samples "face_0000"... in
 /// "faces/", poses in "poses/<sample>/<pose>.ply") without writing anything.

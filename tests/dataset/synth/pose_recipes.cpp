@@ -1,5 +1,5 @@
 // The 36 poses: names, deformers doing what they say, and clean meshes in every pose.
-#include "dataset/face_poses.h"
+#include "dataset/synth/pose_recipes.h"
 #include "core/error.h"
 #include "face_checks.h"
 #include "test_common.h"
@@ -9,7 +9,7 @@
 using namespace facesketch;
 using namespace facesketch::dataset;
 
-TEST_CASE("face_poses: neutral, 21 expressions and 14 visemes with unique names")
+TEST_CASE("pose_recipes: neutral, 21 expressions and 14 visemes with unique names")
 {
     const auto& recipes = poseRecipes();
     REQUIRE(recipes.size() == 36);
@@ -28,7 +28,7 @@ TEST_CASE("face_poses: neutral, 21 expressions and 14 visemes with unique names"
         REQUIRE(names.count(e));
 }
 
-TEST_CASE("face_poses: jaw opening carries lower lip, lower teeth and tongue, and the upper teeth stay")
+TEST_CASE("pose_recipes: jaw opening carries lower lip, lower teeth and tongue, and the upper teeth stay")
 {
     const FaceTopology t = buildFaceTopology(Resolution::Low);
     const FaceParams p = sampleFaceParams(5, 0);
@@ -56,7 +56,7 @@ TEST_CASE("face_poses: jaw opening carries lower lip, lower teeth and tongue, an
     REQUIRE((V.row(m.landmarks.at("g")) - neutral.row(m.landmarks.at("g"))).norm() == 0);
 }
 
-TEST_CASE("face_poses: eyelids close over the eyeballs and brows move")
+TEST_CASE("pose_recipes: eyelids close over the eyeballs and brows move")
 {
     const FaceTopology t = buildFaceTopology(Resolution::High);
     const FaceParams p = sampleFaceParams(5, 1);
@@ -118,12 +118,12 @@ void requireCleanPoses(Resolution r, int identities)
 
 } // namespace
 
-TEST_CASE("face_poses: every low-resolution pose of 8 faces is free of degenerate, flipped, folded and intersecting triangles")
+TEST_CASE("pose_recipes: every low-resolution pose of 8 faces is free of degenerate, flipped, folded and intersecting triangles")
 {
     requireCleanPoses(Resolution::Low, 8);
 }
 
-TEST_CASE("face_poses: every high-resolution pose of a face is free of degenerate, flipped, folded and intersecting triangles")
+TEST_CASE("pose_recipes: every high-resolution pose of a face is free of degenerate, flipped, folded and intersecting triangles")
 {
     requireCleanPoses(Resolution::High, 1);
 }

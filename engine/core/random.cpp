@@ -1,10 +1,18 @@
-#include "stats/random.h"
+#include "core/random.h"
 
 #include <cmath>
 #include <numbers>
 #include <utility>
 
-namespace facesketch::stats {
+namespace facesketch {
+
+std::uint64_t splitMix64(std::uint64_t x)
+{
+    x += 0x9E3779B97F4A7C15ull;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+    return x ^ (x >> 31);
+}
 
 double Random::uniform()
 {
@@ -28,9 +36,25 @@ double Random::normal()
         hasSpare_ = false;
         return spare_;
     }
-    // 1 - uniform() lies in (0, 1], so the logarithm is finite.
-    const double radius = std::sqrt(-2.0 * std::log(1.0 - uniform()));
-    const double angle = 2.0 * std::numbers::pi * uniform();
+    // u1 must lie in (0, 1] so that the logarithm is finite; see BoxMuller for the three ways.
+    double u1 = 0, u2 = 0;
+    switch (boxMuller_) {
+    case BoxMuller::OneMinus:
+        u1 = 1.0 - uniform();
+        u2 = uniform();
+        break;
+    case BoxMuller::RedrawZero:
+        while (u1 <= 0)
+            u1 = uniform();
+        u2 = uniform();
+        break;
+    case BoxMuller::PlusOne:
+        u1 = (static_cast<double>(engine_() >> 11) + 1.0) * 0x1.0p-53;
+        u2 = (static_cast<double>(engine_() >> 11) + 1.0) * 0x1.0p-53;
+        break;
+    }
+    const double radius = std::sqrt(-2.0 * std::log(u1));
+    const double angle = 2.0 * std::numbers::pi * u2;
     spare_ = radius * std::sin(angle);
     hasSpare_ = true;
     return radius * std::cos(angle);
@@ -55,4 +79,4 @@ std::vector<int> Random::permutation(int n)
     return p;
 }
 
-} // namespace facesketch::stats
+} // namespace facesketch

@@ -1,5 +1,5 @@
 // `facesketch synth` datasets: roles, determinism (byte-identical), a valid dataset on disk.
-#include "dataset/synth.h"
+#include "dataset/synth/synth_dataset.h"
 #include "core/error.h"
 #include "dataset/dataset.h"
 #include "test_common.h"
@@ -24,18 +24,7 @@ std::string bytes(const fs::path& p)
 
 } // namespace
 
-TEST_CASE("synth: the thesis' 182/48/20 split")
-{
-    const auto roles = synthRoles(250);
-    REQUIRE(std::count(roles.begin(), roles.end(), Role::Train) == 182);
-    REQUIRE(std::count(roles.begin(), roles.end(), Role::Contour) == 48);
-    REQUIRE(std::count(roles.begin(), roles.end(), Role::Test) == 20);
-    REQUIRE(synthRoles(1).size() == 1);
-    REQUIRE(synthRoles(1)[0] == Role::Train);
-    REQUIRE_THROWS_WITH(synthRoles(0), Catch::Contains("--identities 0"));
-}
-
-TEST_CASE("synth: same seed gives byte-identical datasets whatever the thread count")
+TEST_CASE("synth_dataset: same seed gives byte-identical datasets whatever the thread count")
 {
     test::TempDir dir;
     SynthOptions o;
@@ -73,7 +62,7 @@ TEST_CASE("synth: same seed gives byte-identical datasets whatever the thread co
     REQUIRE(loadShapes(a, Role::Train, "skin").cols() == 3 * a.manifest.component("skin")->size());
 }
 
-TEST_CASE("synth: a full 250-identity dataset opens and loads by role")
+TEST_CASE("synth_dataset: a full 250-identity dataset opens and loads by role")
 {
     test::TempDir dir;
     SynthOptions o;

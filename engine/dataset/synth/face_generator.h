@@ -1,5 +1,7 @@
 #pragma once
-// The built-in synthetic face model behind `facesketch synth` (issue 3 section 2).
+// The synthetic face generator behind `facesketch synth` (issue 3 section 2). It makes faces
+// from anthropometric parameters (face_params.h); it is not the statistical face model learnt
+// from a dataset (stats/face_model.h), which it only feeds.
 //
 // Geometry. The skin is a star-shaped surface around a centre C inside the head (C sits at the
 // height of the eye corners, x = 0, about 88 mm behind the nasion): every skin vertex is
@@ -21,15 +23,17 @@
 // faces of one resolution share the grid, so they share one topology. Eyeballs, teeth and
 // tongue are separate closed components after the skin.
 //
-// Poses (face_poses.h) are FaceActions: muscle-like deformers that move skin in (theta, phi)
-// (brows, lids, lip corners, lip parting), add radial offsets (cheek puff, pucker), and
-// rotate the jaw, lower lip, lower teeth and tongue about an axis just in front of the ears.
+// Poses. A pose is a named expression or viseme of one identity, one mesh in a dataset
+// (manifest.h Pose). The generator makes it from a pose recipe (pose_recipes.h): a set of
+// FaceActions, muscle-like deformers that move skin in (theta, phi) (brows, lids, lip corners,
+// lip parting), add radial offsets (cheek puff, pucker), and rotate the jaw, lower lip, lower
+// teeth and tongue about an axis just in front of the ears.
 //
 // Units mm; +y up, the face looks down +z, +x is the face's left (docs/dataset-format.md).
 
 #include "core/mesh.h"
-#include "dataset/face_params.h"
 #include "dataset/manifest.h"
+#include "dataset/synth/face_params.h"
 
 #include <string>
 #include <vector>
@@ -43,7 +47,7 @@ const char* resolutionName(Resolution resolution);
 /// Inverse of resolutionName; throws Error naming `text` otherwise.
 Resolution parseResolution(const std::string& text);
 
-/// Muscle-like deformers of one pose. Pairs are [right, left] (the face's own sides).
+/// Muscle-like deformers of one pose recipe. Pairs are [right, left] (the face's own sides).
 struct FaceActions {
     double jawOpen = 0;                 ///< degrees of jaw rotation (about 0..20)
     double lipPart = 0;                 ///< mm of extra opening between the lips

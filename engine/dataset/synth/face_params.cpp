@@ -1,35 +1,10 @@
-#include "dataset/face_params.h"
+#include "dataset/synth/face_params.h"
+
+#include "core/random.h"
 
 #include <cmath>
 
 namespace facesketch::dataset {
-
-Rng::Rng(std::uint64_t seed)
-    : engine_(seed)
-{
-}
-
-double Rng::uniform()
-{
-    return static_cast<double>(engine_() >> 11) * 0x1.0p-53;
-}
-
-double Rng::normal()
-{
-    if (hasSpare_) {
-        hasSpare_ = false;
-        return spare_;
-    }
-    double u = 0;
-    while (u <= 0)
-        u = uniform();
-    const double v = uniform();
-    const double radius = std::sqrt(-2.0 * std::log(u));
-    const double angle = 2.0 * M_PI * v;
-    spare_ = radius * std::sin(angle);
-    hasSpare_ = true;
-    return radius * std::cos(angle);
-}
 
 const std::vector<Norm>& farkasNorms()
 {
@@ -62,11 +37,8 @@ double normDraw(const Norm& n, bool female, double g, double z)
 
 FaceParams sampleFaceParams(std::uint64_t seed, int index)
 {
-    // A separate stream per identity (splitmix-style mixing of seed and index).
-    std::uint64_t mixed = seed + 0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(index + 1);
-    mixed = (mixed ^ (mixed >> 30)) * 0xBF58476D1CE4E5B9ull;
-    mixed = (mixed ^ (mixed >> 27)) * 0x94D049BB133111EBull;
-    Rng rng(mixed ^ (mixed >> 31));
+    // A separate stream per identity: SplitMix64 of the index-th step of its Weyl sequence.
+    Random rng(splitMix64(seed + 0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(index)), BoxMuller::RedrawZero);
 
     FaceParams p;
     p.female = rng.uniform() < 0.5;

@@ -1,4 +1,4 @@
-#include "dataset/face_poses.h"
+#include "dataset/synth/pose_recipes.h"
 
 namespace facesketch::dataset {
 

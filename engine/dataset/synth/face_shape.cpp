@@ -1,4 +1,4 @@
-// Vertices of the synthetic face (face_model.h) from its frame (face_frame.h): the star-shaped
+// Vertices of the synthetic face (face_generator.h) from its frame (face_frame.h): the star-shaped
 // skin r(theta, phi) as base + bone (nose, brows, sockets, cheekbones, chin) + soft tissue
 // (lips, philtrum, cheeks, eyebrows, detail), eyelids resting on the eyeballs, the pose
 // deformers that slide skin over that structure and turn the jaw, and the eyeball, teeth and
@@ -6,9 +6,9 @@
 //
 // Sources: proportions from Farkas LG, Anthropometry of the Head and Face, 2nd ed., 1994
 // (face_params.cpp); the landmark set of thesis Table 3.1; the 36 poses of thesis 5.2.
-#include "dataset/face_model.h"
+#include "dataset/synth/face_generator.h"
 
-#include "dataset/face_frame.h"
+#include "dataset/synth/face_frame.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>

@@ -1,11 +1,11 @@
 #pragma once
-// Internal to engine/dataset: the per-face frame of the synthetic face model (face_model.h),
+// Internal to engine/dataset/synth: the per-face frame of the synthetic face generator (face_generator.h),
 // i.e. everything derived from FaceParams once per face (landmark targets, the midline
 // profile, head widths, eyeballs, the grid's knot angles), and small shared helpers.
 // face_frame.cpp builds it; face_shape.cpp evaluates vertices with it.
 
 #include "core/error.h"
-#include "dataset/face_model.h"
+#include "dataset/synth/face_generator.h"
 
 #include <Eigen/Core>
 #include <algorithm>

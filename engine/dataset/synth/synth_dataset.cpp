@@ -1,8 +1,8 @@
-#include "dataset/synth.h"
+#include "dataset/synth/synth_dataset.h"
 
 #include "core/error.h"
 #include "dataset/dataset.h"
-#include "dataset/face_poses.h"
+#include "dataset/synth/pose_recipes.h"
 #include "io/mesh_io.h"
 
 #include <atomic>
@@ -13,19 +13,6 @@
 namespace facesketch::dataset {
 
 namespace fs = std::filesystem;
-
-std::vector<Role> synthRoles(int identities)
-{
-    if (identities < 1)
-        fail("synth: --identities ", identities, " must be at least 1");
-    const int contour = static_cast<int>(std::lround(identities * 48.0 / 250.0));
-    const int test = static_cast<int>(std::lround(identities * 20.0 / 250.0));
-    const int train = identities - contour - test;
-    std::vector<Role> roles(static_cast<size_t>(train), Role::Train);
-    roles.insert(roles.end(), static_cast<size_t>(contour), Role::Contour);
-    roles.insert(roles.end(), static_cast<size_t>(test), Role::Test);
-    return roles;
-}
 
 namespace {
 
@@ -50,7 +37,7 @@ Manifest synthManifest(const FaceTopology& topology, const SynthOptions& options
     m.units = "mm";
     m.up = "+y";
     m.forward = "+z";
-    const std::vector<Role> roles = synthRoles(options.identities);
+    const std::vector<Role> roles = splitRoles(options.identities);
     for (int i = 0; i < options.identities; ++i) {
         const std::string name = sampleName(i);
         m.samples.push_back({ name, fs::path("faces") / (name + ".ply"), roles[static_cast<size_t>(i)] });
