@@ -4,11 +4,12 @@
 // measured on lavapipe, is in BENCHMARKS.md ("Why the kernels look as they do").
 //
 // Blocks: a block's members are a macro (`NAME_MEMBERS`) of GLSL declarations using only
-// uint, vec4, uvec4 and mat4, so that they have the same offsets under std140 and std430 and in
-// C++. A shader declares the block around them (`layout(push_constant) uniform Constants {
-// NORMALS_CONSTANTS_MEMBERS };`); C++ gets the struct `facesketch::shaders::Name` below, whose
-// size and offsets are checked with static_assert. Comments inside the member macros are /* */:
-// a // comment would swallow the line continuation.
+// uint, float, vec4, uvec4 and mat4, the vectors and matrices first, so that they have the same
+// offsets under std140 and std430 and in C++. A shader declares the block around them:
+//   layout(push_constant) uniform Constants { NORMALS_CONSTANTS_MEMBERS };
+// and C++ gets the struct `facesketch::shaders::Name` below, whose size and offsets are checked
+// with static_assert. Comments inside the member macros are /* */: a // comment would swallow
+// the line continuation.
 #ifndef FACESKETCH_SHADERS_SHARED_H
 #define FACESKETCH_SHADERS_SHARED_H
 
@@ -16,8 +17,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
-// GLSL's unsigned literal suffix is C++'s too; GLSL's types, under their GLSL names, for the
-// member macros.
+// GLSL's types under their GLSL names, for the member macros (float is float in both; so is
+// the unsigned literal suffix u).
 namespace facesketch::shaders {
 using uint = std::uint32_t;
 using vec4 = glm::vec4;
@@ -94,6 +95,13 @@ using mat4 = glm::mat4;
 #define DRAW_MODE_LIT    0 // Lambert + specular from a head light, two-sided
 #define DRAW_MODE_UNLIT  1 // vertex colour as is
 #define DRAW_MODE_POINTS 2 // unlit round points
+// Push constants of mesh.vert and mesh.frag.
+#define DRAW_CONSTANTS_MEMBERS                                                                                                             \
+    mat4 viewProjection;                                                                                                                   \
+    vec4 toLight;      /* xyz: unit vector towards the head light (world) */                                                               \
+    uint mode;         /* DRAW_MODE_* */                                                                                                   \
+    float pointSize;   /* pixels */                                                                                                        \
+    float depthOffset; /* pulls lines and points towards the camera, in NDC depth units */
 
 // The per-view contour tests and the candidate cloud (thesis 4.3, 4.4) in two passes, so that
 // the suggestive zero-crossing test reads one word per neighbour instead of recomputing its
@@ -177,6 +185,12 @@ struct alignas(16) BatchConstants {
     BATCH_CONSTANTS_MEMBERS
 };
 static_assert(sizeof(BatchConstants) == 16 && offsetof(BatchConstants, meshCount) == 4);
+
+struct alignas(16) DrawConstants {
+    DRAW_CONSTANTS_MEMBERS
+};
+static_assert(sizeof(DrawConstants) == 96 && offsetof(DrawConstants, toLight) == 64 && offsetof(DrawConstants, mode) == 80
+    && offsetof(DrawConstants, depthOffset) == 88);
 
 struct ContourView {
     CONTOURS_VIEW_MEMBERS
