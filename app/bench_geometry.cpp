@@ -2,6 +2,7 @@
 
 #include "bench.h"
 
+#include "core/random.h"
 #include "core/stopwatch.h"
 #include "geometry/normals.h"
 #include "geometry/normals_gpu.h"
@@ -9,7 +10,6 @@
 #include "render/renderer.h"
 
 #include <cmath>
-#include <random>
 
 namespace facesketch::app {
 
@@ -18,12 +18,11 @@ namespace {
 // A batch of `meshes` distinct bumpy grids with about `vertices` vertices each, deterministic.
 std::vector<float> bumpyBatch(const Mesh& grid, int meshes)
 {
-    std::mt19937_64 rng(20100101);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    Random random(20100101);
     std::vector<float> positions;
     positions.reserve(static_cast<size_t>(meshes) * grid.V.rows() * 3);
     for (int m = 0; m < meshes; ++m) {
-        const double a = u(rng), b = u(rng), c = u(rng);
+        const double a = random.uniform(-1, 1), b = random.uniform(-1, 1), c = random.uniform(-1, 1);
         for (Eigen::Index v = 0; v < grid.V.rows(); ++v) {
             const double x = grid.V(v, 0), y = grid.V(v, 1);
             positions.push_back(static_cast<float>(x));

@@ -17,11 +17,7 @@ layout(binding = CONTOURS_BINDING_NEIGHBOURS) uniform usamplerBuffer neighbours;
 layout(binding = CONTOURS_BINDING_WORK_TEXELS) uniform usamplerBuffer work;
 #include "contours_view.glsl"
 
-struct Candidate {
-    uvec4 ids;   // mesh, vertex, types, 0
-    vec4 world;  // xyz, depth
-    vec4 pixel;  // x, y
-};
+struct Candidate { CONTOURS_CANDIDATE_MEMBERS };
 layout(binding = CONTOURS_BINDING_OUTPUT, std430) buffer Output {
     uint count;
     uint pad0, pad1, pad2;

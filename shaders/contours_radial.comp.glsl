@@ -10,7 +10,7 @@
 // does the same work: no branch a SIMD row would run for one lane.
 // Each invocation does CONTOURS_MESHES_PER_INVOCATION meshes of one vertex, and lists them all
 // with one atomic per subgroup: on lavapipe the listing's ballot, atomic and broadcast cost as
-// much per subgroup as a good part of the arithmetic (shaders/shared.h).
+// much per subgroup as a good part of the arithmetic (BENCHMARKS.md, "Why the kernels look as they do").
 #include "shared.h"
 
 // A workgroup does every mesh of a few vertices (up to 256 meshes) rather than 64 meshes of many
@@ -54,13 +54,13 @@ uint radialWord(int index, uint flag, out bool listed)
     float cwww = (c.x * u * u * u + 3.0 * c.y * u * u * t + 3.0 * c.z * u * t * t + c.w * t * t * t) / (s2 * s);
     float dwkr = cwww + 2.0 * k.x * k.y * ndotv / s;
     // Selections by mix() and all() rather than if, ?: and &&, which glslang turns into
-    // branches (shaders/shared.h).
+    // branches (BENCHMARKS.md, "Why the kernels look as they do").
     bool plane = (shape.x | shape.y) != 0u;
     bool radialDefined = all(bvec2(plane, u * u + t * t > 1e-24));
     // +0 where undefined or zero, so that the word's sign is k_r's "below zero".
     kr = mix(0.0, clamp(kr, -1e30, 1e30), all(bvec2(radialDefined, kr != 0.0)));
 
-    // Where k_r keeps its sign on the whole one-ring for any view (GpuCurvature::signLockTexels)
+    // Where k_r keeps its sign on the whole one-ring for any view (GpuCulling::signLockTexels)
     // no zero crossing can mark the vertex: pass 2 need not look at its neighbours.
     bool locked = ((texelFetch(signLocks, index >> 5).x >> (uint(index) & 31u)) & 1u) != 0u;
     uint bits = mix(0u, CONTOUR_SILHOUETTE, abs(ndotv) < thresholds.x) |

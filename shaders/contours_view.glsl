@@ -1,14 +1,6 @@
 // The view block and helpers shared by contours_radial.comp.glsl and contours.comp.glsl; the
-// host side is ContourViewGpu in engine/contours/candidates_gpu.cpp.
-layout(binding = CONTOURS_BINDING_VIEW, std140) uniform View {
-    mat4 viewProjection;
-    vec4 eye;        // perspective: the eye, 1; orthographic: the unit vector towards the camera, 0
-    vec4 rect;       // x0, y0, x1, y1 in pixels
-    vec4 sphere;     // centre, radius in mm
-    vec4 thresholds; // silhouette, suggestive, featureSize^2, 0
-    vec4 screen;     // width, height
-    uvec4 counts;    // vertexCount, meshCount, capacity, listed vertices
-};
+// members are CONTOURS_VIEW_MEMBERS in shared.h, the host side facesketch::shaders::ContourView.
+layout(binding = CONTOURS_BINDING_VIEW, std140) uniform View { CONTOURS_VIEW_MEMBERS };
 
 // The unit vector from p towards the camera. Arithmetic rather than a ?: on the projection:
 // glslang makes a branch of that, and lavapipe runs both sides of it for every row (4 ms of a

@@ -16,10 +16,7 @@ layout(binding = CURVATURE_BINDING_NORMALS) uniform samplerBuffer normals; // (T
 layout(binding = CURVATURE_BINDING_CURVATURE, std430) restrict writeonly buffer Curvatures { vec4 curvatures[]; }; // k1, k2, area, 0
 layout(binding = CURVATURE_BINDING_DIRECTIONS, std430) restrict writeonly buffer Directions { vec4 directions[]; }; // dir1, 0
 
-layout(push_constant) uniform Constants {
-    uint vertexCount;
-    uint meshCount;
-};
+layout(push_constant) uniform Constants { BATCH_CONSTANTS_MEMBERS };
 
 #include "curvature_common.glsl"
 

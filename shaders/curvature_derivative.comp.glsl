@@ -20,10 +20,7 @@ layout(binding = DCURV_BINDING_DERIVATIVE, std430) restrict writeonly buffer Der
 layout(binding = DCURV_BINDING_SHAPE, std430) restrict writeonly buffer Shapes { uvec4 shapes[]; };
 layout(binding = DCURV_BINDING_SHAPE_C23, std430) restrict writeonly buffer ShapesC23 { uint shapesC23[]; };
 
-layout(push_constant) uniform Constants {
-    uint vertexCount;
-    uint meshCount;
-};
+layout(push_constant) uniform Constants { BATCH_CONSTANTS_MEMBERS };
 
 #include "curvature_common.glsl"
 #include "octahedral.glsl"

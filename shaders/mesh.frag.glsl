@@ -2,13 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shared.h"
 
-layout(push_constant) uniform Constants {
-    mat4 viewProjection;
-    vec4 toLight;
-    uint mode;
-    float pointSize;
-    float depthOffset;
-};
+layout(push_constant) uniform Constants { DRAW_CONSTANTS_MEMBERS };
 
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec4 inColor;

@@ -7,13 +7,7 @@ layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec4 inColor;
 
-layout(push_constant) uniform Constants {
-    mat4 viewProjection;
-    vec4 toLight;      // xyz: unit vector towards the head light (world)
-    uint mode;         // DRAW_MODE_*
-    float pointSize;   // pixels
-    float depthOffset; // pulls lines and points towards the camera, in NDC depth units
-};
+layout(push_constant) uniform Constants { DRAW_CONSTANTS_MEMBERS };
 
 layout(location = 0) out vec3 outNormal;
 layout(location = 1) out vec4 outColor;

@@ -14,11 +14,7 @@ layout(binding = NORMALS_BINDING_WEDGE_OFFSETS) uniform usamplerBuffer wedgeOffs
 layout(binding = NORMALS_BINDING_WEDGES) uniform usamplerBuffer wedges; // (T) RG32UI
 layout(binding = NORMALS_BINDING_NORMALS, std430) restrict writeonly buffer Normals { vec4 normals[]; };
 
-layout(push_constant) uniform Constants {
-    uint vertexCount;
-    uint meshCount;
-    uint weighting; // NORMALS_WEIGHT_*
-};
+layout(push_constant) uniform Constants { NORMALS_CONSTANTS_MEMBERS };
 
 vec3 position(uint v, uint mesh)
 {

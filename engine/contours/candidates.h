@@ -20,22 +20,24 @@
 
 #include "contours/curvature.h"
 #include "geometry/camera.h"
+#include "shaders/shared.h"
 
 #include <cstdint>
 #include <vector>
 
 namespace facesketch {
 
+/// The contours a candidate lies on, as bits (the kernels' CONTOUR_* in shaders/shared.h).
 enum ContourType : std::uint32_t {
-    ContourSilhouette = 1,
-    ContourSuggestive = 2,
-    ContourLabelled = 4,
+    ContourSilhouette = CONTOUR_SILHOUETTE,
+    ContourSuggestive = CONTOUR_SUGGESTIVE,
+    ContourLabelled = CONTOUR_LABELLED,
 };
 
-/// Per-vertex flags of a dataset's topology.
+/// Per-vertex flags of a dataset's topology (the kernels' VERTEX_* in shaders/shared.h).
 enum VertexFlag : std::uint32_t {
-    VertexLabelled = 1, ///< on a manually labelled contour
-    VertexExcluded = 2, ///< never a candidate
+    VertexLabelled = VERTEX_LABELLED, ///< on a manually labelled contour
+    VertexExcluded = VERTEX_EXCLUDED, ///< never a candidate
 };
 
 struct ContourParams {

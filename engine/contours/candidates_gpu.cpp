@@ -16,24 +16,9 @@ namespace facesketch {
 
 namespace {
 
-// Mirrors the View block of shaders/contours_view.glsl (std140: vec4s and a mat4 only, so the same as std430).
-struct ContourViewGpu {
-    glm::mat4 viewProjection;
-    glm::vec4 eye;
-    glm::vec4 rect;
-    glm::vec4 sphere;
-    glm::vec4 thresholds;
-    glm::vec4 screen;
-    std::uint32_t counts[4];
-};
-static_assert(sizeof(ContourViewGpu) == 64 + 5 * 16 + 16);
-
-struct CandidateGpu {
-    std::uint32_t ids[4];
-    float world[4];
-    float pixel[4];
-};
-constexpr VkDeviceSize outputHeader = 16;
+using shaders::ContourCandidate;
+using shaders::ContourView;
+constexpr VkDeviceSize outputHeader = CONTOURS_OUTPUT_HEADER * sizeof(std::uint32_t);
 
 // Float limits for the "everything" defaults (1e30 fits in a float; larger would be inf).
 float clampToFloat(double x)
@@ -92,10 +77,10 @@ double maxFacing(const Camera& camera, const std::array<double, 4>& sphere, cons
 // scheduling: a stable counting sort by vertex, then by mesh, linear in the candidates (a
 // comparison sort of a view's 109,000 took 8 ms, as long as pass 2). Throws Error on an id out
 // of range, which only a broken kernel could write.
-std::vector<Candidate> sortedCandidates(std::span<const CandidateGpu> raw, std::uint32_t meshCount, std::uint32_t vertexCount)
+std::vector<Candidate> sortedCandidates(std::span<const ContourCandidate> raw, std::uint32_t meshCount, std::uint32_t vertexCount)
 {
     std::vector<std::uint32_t> start(std::max(meshCount, vertexCount) + 1), byVertex(raw.size());
-    for (const CandidateGpu& c : raw) {
+    for (const ContourCandidate& c : raw) {
         if (c.ids[0] >= meshCount || c.ids[1] >= vertexCount)
             fail("GpuCandidates: the kernel appended mesh ", c.ids[0], " vertex ", c.ids[1], " of ", meshCount, " x ", vertexCount);
         ++start[c.ids[1] + 1];
@@ -105,18 +90,20 @@ std::vector<Candidate> sortedCandidates(std::span<const CandidateGpu> raw, std::
     for (std::uint32_t i = 0; i < raw.size(); ++i)
         byVertex[start[raw[i].ids[1]]++] = i;
     std::fill(start.begin(), start.end(), 0);
-    for (const CandidateGpu& c : raw)
+    for (const ContourCandidate& c : raw)
         ++start[c.ids[0] + 1];
     for (std::uint32_t m = 0; m < meshCount; ++m)
         start[m + 1] += start[m];
     std::vector<Candidate> out(raw.size());
     for (const std::uint32_t i : byVertex) {
-        const CandidateGpu& g = raw[i];
+        const ContourCandidate& g = raw[i];
         Candidate& c = out[start[g.ids[0]]++];
         c.mesh = g.ids[0];
         c.vertex = g.ids[1];
         c.types = g.ids[2];
-        std::memcpy(c.world, g.world, sizeof(c.world));
+        c.world[0] = g.world[0];
+        c.world[1] = g.world[1];
+        c.world[2] = g.world[2];
         c.depth = g.world[3];
         c.screen[0] = g.pixel[0];
         c.screen[1] = g.pixel[1];
@@ -135,6 +122,7 @@ GpuCandidates::GpuCandidates(
     gpu::Device& device, GpuCurvature& curvature, const std::vector<std::uint32_t>& flags, const ContourKernels& kernels)
     : device_(device)
     , curvature_(curvature)
+    , culling_(device, curvature)
 {
     const auto nv = static_cast<size_t>(curvature.vertexCount());
     if (!flags.empty() && flags.size() != nv)
@@ -146,16 +134,18 @@ GpuCandidates::GpuCandidates(
     vkGetPhysicalDeviceProperties2(device_.physical, &properties);
     if (!(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) || !(subgroup.supportedOperations & VK_SUBGROUP_FEATURE_BALLOT_BIT))
         fail("GpuCandidates: the device (", device_.name, ") has no subgroup ballot in compute shaders");
-    radialProgram_ = gpu::createComputeProgram(device_, kernels.radial, kBindings, 0, 1u << CONTOURS_BINDING_VIEW, CONTOURS_TEXEL_BINDINGS);
+    radialProgram_
+        = gpu::createComputeProgram(device_, kernels.radial, CONTOURS_BINDING_COUNT, 0, CONTOURS_UNIFORM_BINDINGS, CONTOURS_TEXEL_BINDINGS);
     try { // a variant's pass 2 may be what fails (ContourKernels): release pass 1's program
-        program_ = gpu::createComputeProgram(device_, kernels.contours, kBindings, 0, 1u << CONTOURS_BINDING_VIEW, CONTOURS_TEXEL_BINDINGS);
+        program_ = gpu::createComputeProgram(
+            device_, kernels.contours, CONTOURS_BINDING_COUNT, 0, CONTOURS_UNIFORM_BINDINGS, CONTOURS_TEXEL_BINDINGS);
     } catch (...) {
         gpu::destroyComputeProgram(device_, radialProgram_);
         throw;
     }
-    rings_ = buildNeighbours(curvature.hostWedges());
+    const Neighbours& rings = culling_.rings();
     // A vertex without neighbours (isolated) still needs a non-empty buffer.
-    const std::vector<std::uint32_t> ringVertices = rings_.vertices.empty() ? std::vector<std::uint32_t> { 0 } : rings_.vertices;
+    const std::vector<std::uint32_t> ringVertices = rings.vertices.empty() ? std::vector<std::uint32_t> { 0 } : rings.vertices;
     flags_ = flags.empty() ? std::vector<std::uint32_t>(nv, 0) : flags;
     auto table = [&](gpu::Buffer& buffer, gpu::TexelView& view, const std::uint32_t* data, size_t count, int words) {
         buffer = gpu::createBuffer(device_, count * words * sizeof(std::uint32_t), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
@@ -164,9 +154,9 @@ GpuCandidates::GpuCandidates(
         view = gpu::createTexelView(device_, buffer, words == 2 ? VK_FORMAT_R32G32_UINT : VK_FORMAT_R32_UINT);
     };
     table(vertexList_, vertexListTexels_, nullptr, nv, 2);
-    table(neighbourOffsets_, neighbourOffsetTexels_, rings_.offsets.data(), rings_.offsets.size(), 1);
+    table(neighbourOffsets_, neighbourOffsetTexels_, rings.offsets.data(), rings.offsets.size(), 1);
     table(neighbours_, neighbourTexels_, ringVertices.data(), ringVertices.size(), 1);
-    view_ = gpu::createBuffer(device_, sizeof(ContourViewGpu), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+    view_ = gpu::createBuffer(device_, sizeof(ContourView), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
     timer_ = gpu::createGpuTimer(device_);
 }
 
@@ -197,17 +187,32 @@ void GpuCandidates::destroyBatchBuffers()
     gpu::destroyBuffer(device_, radial_);
 }
 
-std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourParams& p, double* timing)
+void GpuCandidates::createOutput()
 {
+    output_
+        = gpu::createBuffer(device_, outputHeader + VkDeviceSize(capacity_) * sizeof(ContourCandidate), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+}
+
+std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourParams& params, double* timing)
+{
+    if (list(camera, params) > 0)
+        gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) { record(cmd); });
+    return collect(VK_NULL_HANDLE, timing);
+}
+
+std::uint32_t GpuCandidates::list(const Camera& camera, const ContourParams& p)
+{
+    step_ = Step::None;
     const std::uint32_t meshCount = curvature_.meshCount();
     const auto vertexCount = static_cast<std::uint32_t>(curvature_.vertexCount());
     if (meshCount == 0)
-        fail("GpuCandidates::build: the curvature holds no meshes");
+        fail("GpuCandidates::list: the curvature holds no meshes");
     const VkDeviceSize perVertex = VkDeviceSize(meshCount) * vertexCount * sizeof(std::uint32_t);
     const std::uint64_t pairGroups = (std::uint64_t(meshCount) * vertexCount + CONTOURS_GROUP_PAIRS - 1) / CONTOURS_GROUP_PAIRS;
     if (pairGroups > device_.properties.limits.maxComputeWorkGroupCount[0])
-        fail("GpuCandidates::build: ", meshCount, " faces of ", vertexCount, " vertices may need ", pairGroups,
+        fail("GpuCandidates::list: ", meshCount, " faces of ", vertexCount, " vertices may need ", pairGroups,
             " workgroups in pass 2, more than this device's limit of ", device_.properties.limits.maxComputeWorkGroupCount[0]);
+    culling_.update(curvature_);
     if (radial_.size != perVertex) { // first build, or the curvature now holds another batch
         vkDeviceWaitIdle(device_.device);
         destroyBatchBuffers();
@@ -223,8 +228,9 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
     // of those that may pass the suggestive pre-test (n . v > 0), whose radial curvature the
     // zero-crossing test reads. A vertex left out would give no candidate and be read by none:
     // the cloud is the same. The facing bound allows 1e-4 for the kernels' float arithmetic.
-    const std::vector<std::array<double, 4>>& bounds = curvature_.vertexBounds();
-    const std::vector<std::array<double, 4>>& cones = curvature_.normalCones();
+    const std::vector<std::array<double, 4>>& bounds = culling_.vertexBounds();
+    const std::vector<std::array<double, 4>>& cones = culling_.normalCones();
+    const Neighbours& rings = culling_.rings();
     std::vector<char> candidate(vertexCount, 0), pretest(vertexCount, 0), listed(vertexCount, 0);
     const bool everything = p.rect[0] <= -1e29 && p.rect[1] <= -1e29 && p.rect[2] >= 1e29 && p.rect[3] >= 1e29 && p.sphere[3] >= 1e29;
     for (std::uint32_t v = 0; v < vertexCount; ++v) {
@@ -239,40 +245,36 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
     for (std::uint32_t v = 0; v < vertexCount; ++v) {
         listed[v] |= candidate[v];
         if (pretest[v])
-            for (std::uint32_t k = rings_.offsets[v]; k < rings_.offsets[v + 1]; ++k)
-                listed[rings_.vertices[k]] = 1;
+            for (std::uint32_t k = rings.offsets[v]; k < rings.offsets[v + 1]; ++k)
+                listed[rings.vertices[k]] = 1;
     }
-    std::vector<std::uint32_t> list;
+    std::vector<std::uint32_t> entries; // vertex, flags
     for (std::uint32_t v = 0; v < vertexCount; ++v)
-        if (listed[v])
-            list.push_back(v);
-    if (list.empty()) {
-        listedVertices_ = 0;
-        if (timing)
-            *timing = 0;
-        return {};
-    }
-    std::vector<std::uint32_t> entries(2 * list.size()); // vertex, flags
-    for (size_t i = 0; i < list.size(); ++i) {
-        entries[2 * i] = list[i];
-        entries[2 * i + 1] = flags_[list[i]];
-    }
-    gpu::uploadBuffer(device_, vertexList_, entries.data(), entries.size() * sizeof(std::uint32_t));
-    const auto listCount = static_cast<std::uint32_t>(list.size());
+        if (listed[v]) {
+            entries.push_back(v);
+            entries.push_back(flags_[v]);
+        }
+    const auto listCount = static_cast<std::uint32_t>(entries.size() / 2);
     listedVertices_ = listCount;
+    step_ = Step::Listed;
+    if (listCount == 0)
+        return 0;
+    gpu::uploadBuffer(device_, vertexList_, entries.data(), entries.size() * sizeof(std::uint32_t));
     const std::uint64_t groupsY = (listCount + radialProgram_.localSize[1] - 1) / radialProgram_.localSize[1];
-    if (groupsY > device_.properties.limits.maxComputeWorkGroupCount[1])
-        fail("GpuCandidates::build: ", listCount, " vertices need ", groupsY, " workgroups in pass 1, more than this device's limit of ",
+    if (groupsY > device_.properties.limits.maxComputeWorkGroupCount[1]) {
+        step_ = Step::None;
+        fail("GpuCandidates::list: ", listCount, " vertices need ", groupsY, " workgroups in pass 1, more than this device's limit of ",
             device_.properties.limits.maxComputeWorkGroupCount[1]);
+    }
 
     if (capacity_ == 0) {
-        // A view's cloud is typically a few percent of all vertices; grown on demand below.
+        // A view's cloud is typically a few percent of all vertices; grown on demand by collect().
         capacity_ = std::max<std::uint32_t>(1024, meshCount * vertexCount / 16);
-        output_
-            = gpu::createBuffer(device_, outputHeader + VkDeviceSize(capacity_) * sizeof(CandidateGpu), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        createOutput();
     }
 
-    ContourViewGpu view {};
+    ContourView& view = viewData_;
+    view = ContourView {};
     view.viewProjection = glm::mat4(camera.projection * camera.view);
     view.eye
         = camera.kind == Projection::Perspective ? glm::vec4(glm::vec3(camera.eye), 1.0f) : glm::vec4(glm::vec3(-camera.forward), 0.0f);
@@ -280,33 +282,53 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
     view.sphere = { float(p.sphere[0]), float(p.sphere[1]), float(p.sphere[2]), clampToFloat(p.sphere[3]) };
     view.thresholds = { float(p.silhouetteThreshold), float(p.suggestiveThreshold), float(p.featureSize * p.featureSize), 0.0f };
     view.screen = { float(camera.width), float(camera.height), 0.0f, 0.0f };
+    view.counts = { vertexCount, meshCount, capacity_, listCount };
+    gpu::uploadBuffer(device_, view_, &view, sizeof(view));
+    return listCount;
+}
 
+void GpuCandidates::record(VkCommandBuffer cmd)
+{
+    if (step_ == Step::None)
+        fail("GpuCandidates::record: no view listed (call list() first)");
+    step_ = Step::Recorded;
+    const std::uint32_t meshCount = viewData_.counts[1], listCount = viewData_.counts[3];
+    if (listedVertices_ == 0)
+        return;
+    // Pass 1: one invocation per listed vertex and CONTOURS_MESHES_PER_INVOCATION meshes; a
+    // row of BATCH_GROUP_MESHES invocations along x does 64 neighbouring meshes, interleaved
+    // (shaders/contours_radial.comp.glsl). No kernel loops over vertices.
+    const std::uint32_t meshInvocations = (meshCount + CONTOURS_MESHES_PER_INVOCATION - 1) / CONTOURS_MESHES_PER_INVOCATION;
+    gpu::timerStart(cmd, timer_);
+    vkCmdFillBuffer(cmd, output_.buffer, 0, outputHeader, 0);
+    const std::uint32_t workHeader[CONTOURS_WORK_HEADER] = { 0, 1, 1, 0 }; // pass 2's size (x, y, z), pairs
+    vkCmdUpdateBuffer(cmd, work_.buffer, 0, sizeof(workHeader), workHeader);
+    gpu::transferToComputeBarrier(cmd);
+    const std::initializer_list<gpu::Binding> buffers
+        = { &curvature_.positionTexels(), &curvature_.shapeTexels(), &curvature_.c23Texels(), &vertexListTexels_, &view_, &radial_,
+              &radialTexels_, &neighbourOffsetTexels_, &neighbourTexels_, &output_, &work_, &workTexels_, &culling_.signLockTexels() };
+    gpu::dispatchRaw(device_, cmd, radialProgram_, meshInvocations, listCount, 1, buffers, nullptr, 0);
+    gpu::computeToIndirectBarrier(cmd);
+    gpu::dispatchIndirect(device_, cmd, program_, work_, 0, buffers, nullptr, 0);
+    gpu::hostReadBarrier(cmd);
+    gpu::timerEnd(cmd, timer_);
+}
+
+std::vector<Candidate> GpuCandidates::collect(VkFence done, double* timing)
+{
+    if (step_ == Step::None || (step_ == Step::Listed && listedVertices_ > 0))
+        fail("GpuCandidates::collect: no view recorded (call list() and record() first)");
+    step_ = Step::None;
+    if (listedVertices_ == 0) {
+        if (timing)
+            *timing = 0;
+        return {};
+    }
+    if (done != VK_NULL_HANDLE)
+        if (VkResult r = vkWaitForFences(device_.device, 1, &done, VK_TRUE, UINT64_MAX); r != VK_SUCCESS)
+            gpu::gpuFail("waiting for the candidate cloud's GPU work (vkWaitForFences)", r);
+    const std::uint32_t meshCount = viewData_.counts[1], vertexCount = viewData_.counts[0];
     for (;;) {
-        view.counts[0] = vertexCount;
-        view.counts[1] = meshCount;
-        view.counts[2] = capacity_;
-        view.counts[3] = listCount;
-        gpu::uploadBuffer(device_, view_, &view, sizeof(view));
-        // Pass 1: one invocation per listed vertex and CONTOURS_MESHES_PER_INVOCATION meshes; a
-        // row of BATCH_GROUP_MESHES invocations along x does 64 neighbouring meshes, interleaved
-        // (shaders/contours_radial.comp.glsl). No kernel loops over vertices.
-        const std::uint32_t rows = listCount;
-        const std::uint32_t meshInvocations = (meshCount + CONTOURS_MESHES_PER_INVOCATION - 1) / CONTOURS_MESHES_PER_INVOCATION;
-        gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
-            gpu::timerStart(cmd, timer_);
-            vkCmdFillBuffer(cmd, output_.buffer, 0, outputHeader, 0);
-            const std::uint32_t workHeader[CONTOURS_WORK_HEADER] = { 0, 1, 1, 0 }; // pass 2's size (x, y, z), pairs
-            vkCmdUpdateBuffer(cmd, work_.buffer, 0, sizeof(workHeader), workHeader);
-            gpu::transferToComputeBarrier(cmd);
-            const std::initializer_list<gpu::Binding> buffers = { &curvature_.positionTexels(), &curvature_.shapeTexels(),
-                &curvature_.c23Texels(), &vertexListTexels_, &view_, &radial_, &radialTexels_, &neighbourOffsetTexels_, &neighbourTexels_,
-                &output_, &work_, &workTexels_, &curvature_.signLockTexels() };
-            gpu::dispatchRaw(device_, cmd, radialProgram_, meshInvocations, rows, 1, buffers, nullptr, 0);
-            gpu::computeToIndirectBarrier(cmd);
-            gpu::dispatchIndirect(device_, cmd, program_, work_, 0, buffers, nullptr, 0);
-            gpu::hostReadBarrier(cmd);
-            gpu::timerEnd(cmd, timer_);
-        });
         if (timing)
             *timing = gpu::timerMilliseconds(device_, timer_);
         std::uint32_t count = 0;
@@ -315,19 +337,23 @@ std::vector<Candidate> GpuCandidates::build(const Camera& camera, const ContourP
             vkDeviceWaitIdle(device_.device);
             gpu::destroyBuffer(device_, output_);
             capacity_ = count + count / 4;
-            output_ = gpu::createBuffer(
-                device_, outputHeader + VkDeviceSize(capacity_) * sizeof(CandidateGpu), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+            createOutput();
+            viewData_.counts[2] = capacity_;
+            gpu::uploadBuffer(device_, view_, &viewData_, sizeof(viewData_));
+            step_ = Step::Listed;
+            gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) { record(cmd); });
+            step_ = Step::None;
             continue;
         }
         // Sorted straight from the output where the device shares memory with the host (lavapipe):
         // allocating and copying a whole view's 5 MB first took about 1 ms of its 6 ms on the host.
         if (output_.mapped)
             return sortedCandidates(
-                { reinterpret_cast<const CandidateGpu*>(static_cast<const char*>(output_.mapped) + outputHeader), count }, meshCount,
+                { reinterpret_cast<const ContourCandidate*>(static_cast<const char*>(output_.mapped) + outputHeader), count }, meshCount,
                 vertexCount);
-        std::vector<CandidateGpu> raw(count);
+        std::vector<ContourCandidate> raw(count);
         if (count)
-            gpu::readbackBuffer(device_, output_, raw.data(), raw.size() * sizeof(CandidateGpu), outputHeader);
+            gpu::readbackBuffer(device_, output_, raw.data(), raw.size() * sizeof(ContourCandidate), outputHeader);
         return sortedCandidates(raw, meshCount, vertexCount);
     }
 }

@@ -2,27 +2,40 @@
 // The candidate cloud on the GPU (thesis 4.4): the per-view contour tests of
 // contours/candidates.h for every face whose curvature a GpuCurvature holds, appended to one
 // compact list with an atomic counter, then put in (mesh, vertex) order on the host (a counting
-// sort) so that the result does not depend on GPU scheduling. Two dispatches (shaders/shared.h
-// explains the choices): pass 1 computes every pair's radial curvature and own tests and lists
+// sort) so that the result does not depend on GPU scheduling. Two dispatches (BENCHMARKS.md, "Why
+// the kernels look as they do", explains the choices): pass 1 computes every pair's radial curvature and own tests and lists
 // the pairs that passed one (about a sixth); pass 2, dispatched indirectly at that size, runs
 // the one-ring zero-crossing test, culls to the rectangle and sphere and appends. Pass 1 visits
 // only the vertices that some face may show inside the culling rectangle and sphere (from
 // per-vertex bounding spheres over the batch) and their one-rings: a stroke's box costs a
 // fraction of a whole view. Nor does it visit the vertices that face away from the camera in
-// every face (from per-vertex normal cones, contours/curvature_gpu.h): on 230 synthetic faces,
-// 15% of the vertices in a three-quarter view and 35% in a profile. Pairs whose one-ring keeps
-// one sign of k_r for any view (GpuCurvature::signLockTexels) skip the zero-crossing test, which
-// they cannot pass: even where the view runs exactly along a neighbour's normal (its k_r taken
-// as 0), that neighbour is the end nearer zero, and it has no pre-test.
+// every face (from per-vertex normal cones). Pairs whose one-ring keeps one sign of k_r for any
+// view (sign locks) skip the zero-crossing test, which they cannot pass: even where the view
+// runs exactly along a neighbour's normal (its k_r taken as 0), that neighbour is the end nearer
+// zero, and it has no pre-test. The bounds, cones and locks are a GpuCulling
+// (contours/culling_gpu.h), kept up to date with the curvature: on 230 synthetic faces the cones
+// leave out 15% of the vertices in a three-quarter view and 35% in a profile.
 // Needs subgroup ballot in compute shaders (every desktop GPU and lavapipe have it) and texel
 // buffers of #faces x #V texels (maxTexelBufferElements); throws Error naming what is missing.
 //
 //   GpuCandidates cloud(device, curvature, flags);           // once per dataset
 //   std::vector<Candidate> c = cloud.build(camera, params);  // per view change or stroke
+//
+// build() is list(), record() into a one-shot command buffer, submit and wait, then collect().
+// An app that overlaps the cloud with other GPU or host work calls the three itself:
+//
+//   if (cloud.list(camera, params) > 0) {   // host: which vertices to visit; uploads them
+//       cloud.record(cmd);                  // into the app's command buffer, submitted by the app
+//       submit(cmd, fence);                 // ... other work meanwhile ...
+//   }
+//   std::vector<Candidate> c = cloud.collect(fence);  // waits, reads back, sorts
+//
+// One view at a time per object: list() again only after collect().
 
 #include "contours/candidates.h"
+#include "contours/culling_gpu.h"
 #include "contours/curvature_gpu.h"
-#include "geometry/wedges.h"
+#include "shaders/shared.h"
 
 namespace facesketch {
 
@@ -46,21 +59,42 @@ public:
     GpuCandidates(const GpuCandidates&) = delete;
     GpuCandidates& operator=(const GpuCandidates&) = delete;
 
-    /// The candidates seen by `camera`, sorted by (mesh, vertex). Grows its output buffer and
-    /// runs again when the cloud outgrows it. `timing`, if given, receives GPU ms of the last run.
+    /// The candidates seen by `camera`, sorted by (mesh, vertex): list(), record() into a
+    /// one-shot command buffer, submit, wait, collect(). `timing`, if given, receives GPU ms of
+    /// the last run (0 when no vertex was listed).
     std::vector<Candidate> build(const Camera& camera, const ContourParams& params, double* timing = nullptr);
-    /// The vertices the last build ran the kernels for (of #V): those some face may show in the
-    /// rectangle and sphere without facing away, and their one-rings.
+
+    /// Step 1, on the host: lists the vertices `camera` may need (those some face may show in
+    /// the rectangle and sphere without facing away, and their one-rings), uploads the list and
+    /// the view, and sizes the buffers. Returns how many it listed; with 0 there is nothing to
+    /// record and collect() returns no candidates. Throws Error when the curvature holds no
+    /// meshes or the batch exceeds the device's workgroup limits. Must not be called while a
+    /// recording of this object is in flight (it rewrites what that reads).
+    std::uint32_t list(const Camera& camera, const ContourParams& params);
+    /// Step 2: records both passes of the listed view (and a GPU timer) into `cmd`, a command
+    /// buffer in the recording state on this device's queue, outside a render pass. The caller
+    /// submits it. Records nothing when list() listed nothing; throws Error without a list().
+    void record(VkCommandBuffer cmd);
+    /// Step 3: waits for `done` (the fence of the submission holding record()'s commands, or
+    /// VK_NULL_HANDLE when the caller has waited for it already), reads the cloud back and sorts
+    /// it by (mesh, vertex). When the cloud outgrew the output buffer, grows it and runs the
+    /// view again itself (a one-shot submission, waited for). `timing` as in build(). Throws
+    /// Error without a record(), gpu::GpuError when the wait fails (device lost).
+    std::vector<Candidate> collect(VkFence done = VK_NULL_HANDLE, double* timing = nullptr);
+
+    /// The vertices the last list() listed (of #V).
     std::uint32_t listedVertices() const { return listedVertices_; }
+    /// The culling data the listing reads (updated by list() when the curvature changed).
+    const GpuCulling& culling() const { return culling_; }
 
 private:
     gpu::Device& device_;
     GpuCurvature& curvature_;
+    GpuCulling culling_;
     void destroyBatchBuffers();
+    void createOutput();
 
-    static constexpr std::uint32_t kBindings = 13; // shaders/shared.h CONTOURS_BINDING_*
     gpu::ComputeProgram radialProgram_, program_;
-    Neighbours rings_;                 // one-rings on the host, for listing the vertices a view needs
     std::vector<std::uint32_t> flags_; // VertexFlag per vertex, sent with the vertex list
     gpu::Buffer view_, neighbourOffsets_, neighbours_, vertexList_;
     gpu::TexelView neighbourOffsetTexels_, neighbourTexels_, vertexListTexels_;
@@ -72,6 +106,11 @@ private:
     std::uint32_t capacity_ = 0;
     std::uint32_t listedVertices_ = 0;
     gpu::GpuTimer timer_;
+
+    // The view between list(), record() and collect().
+    enum class Step { None, Listed, Recorded };
+    Step step_ = Step::None;
+    shaders::ContourView viewData_ {};
 };
 
 } // namespace facesketch

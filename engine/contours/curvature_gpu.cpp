@@ -15,36 +15,17 @@ namespace facesketch {
 
 namespace {
 
-struct alignas(16) NormalsConstants {
-    std::uint32_t vertexCount;
-    std::uint32_t meshCount;
-    std::uint32_t weighting;
-};
-
-struct alignas(16) BatchConstants {
-    std::uint32_t vertexCount;
-    std::uint32_t meshCount;
-};
+using shaders::BatchConstants;
+using shaders::NormalsConstants;
 
 // Batch-layout vec4 buffer back to mesh-major with `components` floats per vertex.
 std::vector<float> downloadBatch(
-    gpu::Device& device, const gpu::Buffer& buffer, std::uint32_t meshCount, Eigen::Index vertexCount, int components)
+    gpu::Device& device, const gpu::Buffer& buffer, std::uint32_t meshCount, Eigen::Index vertexCount, size_t components)
 {
     const size_t n = static_cast<size_t>(meshCount) * vertexCount;
     std::vector<float> batch(4 * n);
     gpu::readbackBuffer(device, buffer, batch.data(), batch.size() * sizeof(float));
-    std::vector<float> out(components * n);
-    for (size_t v = 0; v < static_cast<size_t>(vertexCount); ++v)
-        for (size_t m = 0; m < meshCount; ++m)
-            for (int c = 0; c < components; ++c)
-                out[components * (m * vertexCount + v) + c] = batch[4 * (v * meshCount + m) + c];
-    return out;
-}
-
-// Words of the sign-lock bit set: one bit per (mesh, vertex), at least one word.
-size_t signLockWords(std::uint32_t meshCount, Eigen::Index vertexCount)
-{
-    return std::max<size_t>(1, (size_t(meshCount) * size_t(vertexCount) + 31) / 32);
+    return fromBatchLayout(batch, meshCount, static_cast<size_t>(vertexCount), components);
 }
 
 } // namespace
@@ -78,16 +59,15 @@ GpuCurvature::GpuCurvature(gpu::Device& device, const Triangles& F, Eigen::Index
 {
     if (vertexCount <= 0 || F.rows() == 0)
         fail("GpuCurvature: need at least one vertex and one triangle (got ", vertexCount, " and ", F.rows(), ")");
-    normalsProgram_
-        = gpu::createComputeProgram(device_, gpu::shaderCode(normals_comp), 4, sizeof(NormalsConstants), 0, NORMALS_TEXEL_BINDINGS);
-    curvatureProgram_
-        = gpu::createComputeProgram(device_, gpu::shaderCode(curvature_comp), 6, sizeof(BatchConstants), 0, CURVATURE_TEXEL_BINDINGS);
+    normalsProgram_ = gpu::createComputeProgram(
+        device_, gpu::shaderCode(normals_comp), NORMALS_BINDING_COUNT, sizeof(NormalsConstants), 0, NORMALS_TEXEL_BINDINGS);
+    curvatureProgram_ = gpu::createComputeProgram(
+        device_, gpu::shaderCode(curvature_comp), CURVATURE_BINDING_COUNT, sizeof(BatchConstants), 0, CURVATURE_TEXEL_BINDINGS);
     derivativeProgram_ = gpu::createComputeProgram(
-        device_, gpu::shaderCode(curvature_derivative_comp), 9, sizeof(BatchConstants), 0, DCURV_TEXEL_BINDINGS);
+        device_, gpu::shaderCode(curvature_derivative_comp), DCURV_BINDING_COUNT, sizeof(BatchConstants), 0, DCURV_TEXEL_BINDINGS);
     uploadWedges(device_, F, vertexCount, wedgeOffsets_, wedges_);
     wedgeTexels_ = createWedgeTexels(device_, wedgeOffsets_, wedges_);
     hostWedges_ = buildWedges(F, vertexCount);
-    hostRings_ = buildNeighbours(hostWedges_);
     timer_ = gpu::createGpuTimer(device_);
 }
 
@@ -106,11 +86,10 @@ GpuCurvature::~GpuCurvature()
 
 void GpuCurvature::destroyBatchBuffers()
 {
-    for (gpu::TexelView* t :
-        { &signLockTexels_, &c23Texels_, &shapeTexels_, &directionTexels_, &curvatureTexels_, &normalTexels_, &positionTexels_ })
+    for (gpu::TexelView* t : { &c23Texels_, &shapeTexels_, &directionTexels_, &curvatureTexels_, &normalTexels_, &positionTexels_ })
         if (t->view)
             gpu::destroyTexelView(device_, *t);
-    for (gpu::Buffer* b : { &signLocks_, &shapesC23_, &shapes_, &derivatives_, &directions_, &curvature_, &normals_, &positions_ })
+    for (gpu::Buffer* b : { &shapesC23_, &shapes_, &derivatives_, &directions_, &curvature_, &normals_, &positions_ })
         if (b->buffer)
             gpu::destroyBuffer(device_, *b);
 }
@@ -139,26 +118,11 @@ void GpuCurvature::setPositions(const std::vector<float>& positions)
         directionTexels_ = gpu::createTexelView(device_, directions_, VK_FORMAT_R32G32B32A32_SFLOAT);
         shapeTexels_ = gpu::createTexelView(device_, shapes_, VK_FORMAT_R32G32B32A32_UINT);
         c23Texels_ = gpu::createTexelView(device_, shapesC23_, VK_FORMAT_R32_UINT);
-        signLocks_ = gpu::createBuffer(device_, signLockWords(meshCount, vertexCount_) * sizeof(std::uint32_t), usage);
-        signLockTexels_ = gpu::createTexelView(device_, signLocks_, VK_FORMAT_R32_UINT);
     }
     meshCount_ = meshCount;
-    normalCones_.clear(); // until run() or uploadShapes()
-    const std::vector<std::uint32_t> noLocks(signLockWords(meshCount, vertexCount_), 0);
-    gpu::uploadBuffer(device_, signLocks_, noLocks.data(), noLocks.size() * sizeof(std::uint32_t));
-    const auto nv = static_cast<size_t>(vertexCount_);
-    vertexBounds_.assign(nv, { 0, 0, 0, 0 });
-    for (size_t m = 0; m < meshCount; ++m)
-        for (size_t v = 0; v < nv; ++v)
-            for (int c = 0; c < 3; ++c)
-                vertexBounds_[v][c] += positions[(m * nv + v) * 3 + c] / double(meshCount);
-    for (size_t m = 0; m < meshCount; ++m)
-        for (size_t v = 0; v < nv; ++v) {
-            double d2 = 0;
-            for (int c = 0; c < 3; ++c)
-                d2 += std::pow(positions[(m * nv + v) * 3 + c] - vertexBounds_[v][c], 2);
-            vertexBounds_[v][3] = std::max(vertexBounds_[v][3], std::sqrt(d2));
-        }
+    hasShapes_ = false; // until run() or uploadShapes()
+    ++positionsVersion_;
+    ++shapesVersion_;
     const std::vector<float> batch = toBatchLayout(positions, meshCount_, static_cast<size_t>(vertexCount_));
     gpu::uploadBuffer(device_, positions_, batch.data(), bytes);
 }
@@ -172,6 +136,8 @@ double GpuCurvature::run()
     const BatchConstants constants { vertices, meshCount_ };
     const std::uint32_t rows = batchRows(vertices, curvatureProgram_.localSize[1]);
     shapesOnly_ = false;
+    hasShapes_ = true;
+    ++shapesVersion_;
     gpu::submitAndWait(device_, [&](VkCommandBuffer cmd) {
         gpu::timerStart(cmd, timer_);
         const WedgeTexels& w = wedgeTexels_;
@@ -188,62 +154,7 @@ double GpuCurvature::run()
         gpu::hostReadBarrier(cmd);
         gpu::timerEnd(cmd, timer_);
     });
-    const double ms = gpu::timerMilliseconds(device_, timer_);
-    std::vector<std::uint32_t> shapes(4 * static_cast<size_t>(meshCount_) * static_cast<size_t>(vertexCount_));
-    gpu::readbackBuffer(device_, shapes_, shapes.data(), shapes.size() * 4);
-    setViewBounds(shapes);
-    return ms;
-}
-
-void GpuCurvature::setViewBounds(const std::vector<std::uint32_t>& shapes)
-{
-    const auto nv = static_cast<size_t>(vertexCount_);
-    // Sign locks: the sign of k1 where k1 and k2 share it (0 where they do not, or no plane).
-    std::vector<signed char> sign(shapes.size() / 4, 0);
-    for (size_t i = 0; i < sign.size(); ++i) {
-        const std::uint32_t* s = &shapes[4 * i];
-        const float k1 = halfToFloat(static_cast<std::uint16_t>(s[2] & 0xffff)), k2 = halfToFloat(static_cast<std::uint16_t>(s[2] >> 16));
-        const bool plane = s[0] != 0 || s[1] != 0;
-        sign[i] = plane && k1 * k2 > 0 ? (k1 > 0 ? 1 : -1) : 0;
-    }
-    std::vector<std::uint32_t> locks(signLockWords(meshCount_, vertexCount_), 0);
-    for (size_t v = 0; v < nv; ++v)
-        for (size_t m = 0; m < meshCount_; ++m) {
-            const size_t i = v * meshCount_ + m;
-            bool locked = sign[i] != 0;
-            for (std::uint32_t k = hostRings_.offsets[v]; locked && k < hostRings_.offsets[v + 1]; ++k) {
-                const size_t j = hostRings_.vertices[k] * size_t(meshCount_) + m;
-                const std::uint32_t* s = &shapes[4 * j];
-                locked = (s[0] == 0 && s[1] == 0) || sign[j] == sign[i]; // a neighbour without a plane is never read
-            }
-            if (locked)
-                locks[i / 32] |= 1u << (i % 32);
-        }
-    gpu::uploadBuffer(device_, signLocks_, locks.data(), locks.size() * sizeof(std::uint32_t));
-
-    // The axis is the normalised mean normal, the half-angle the widest normal's angle to it
-    // plus 1e-4 rad, far more than the float rounding between this decoder and the kernels'.
-    normalCones_.assign(nv, { 0, 0, 1, M_PI });
-    std::vector<Eigen::Vector3d> normals(meshCount_);
-    for (size_t v = 0; v < nv; ++v) {
-        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-        size_t count = 0;
-        for (size_t m = 0; m < meshCount_; ++m) {
-            const std::uint32_t* s = &shapes[4 * (v * meshCount_ + m)];
-            if (s[0] == 0 && s[1] == 0) // no tangent plane: never a candidate
-                continue;
-            normals[count] = octDecode(s[0]);
-            sum += normals[count++];
-        }
-        const double length = sum.norm();
-        if (count == 0 || !(length > 1e-9 * double(count)))
-            continue;
-        const Eigen::Vector3d axis = sum / length;
-        double halfAngle = 0;
-        for (size_t k = 0; k < count; ++k)
-            halfAngle = std::max(halfAngle, std::atan2(normals[k].cross(axis).norm(), normals[k].dot(axis))); // exact near 0, unlike acos
-        normalCones_[v] = { axis.x(), axis.y(), axis.z(), std::min(M_PI, halfAngle + 1e-4) };
-    }
+    return gpu::timerMilliseconds(device_, timer_);
 }
 
 GpuCurvature::PackedShapes GpuCurvature::downloadShapes()
@@ -266,7 +177,8 @@ void GpuCurvature::uploadShapes(const PackedShapes& p)
     gpu::uploadBuffer(device_, shapes_, p.shapes.data(), p.shapes.size() * 4);
     gpu::uploadBuffer(device_, shapesC23_, p.c23.data(), p.c23.size() * 4);
     shapesOnly_ = true;
-    setViewBounds(p.shapes);
+    hasShapes_ = true;
+    ++shapesVersion_;
 }
 
 GpuCurvature::Result GpuCurvature::download()

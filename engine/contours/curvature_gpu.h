@@ -17,7 +17,6 @@
 #include "gpu/compute.h"
 #include "gpu/timer.h"
 
-#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -39,6 +38,14 @@ public:
     void setPositions(const std::vector<float>& positions);
     /// Normals, curvature and its derivative for every mesh; returns GPU milliseconds (or -1).
     double run();
+    /// Whether the packed shapes belong to the current positions: run() or uploadShapes() has
+    /// been called since setPositions().
+    bool hasShapes() const { return hasShapes_; }
+    /// Numbers that change whenever setPositions() changes the positions, and whenever
+    /// setPositions(), run() or uploadShapes() changes the packed shapes, so that data derived
+    /// from them (contours/culling_gpu.h) knows when it is stale.
+    std::uint64_t positionsVersion() const { return positionsVersion_; }
+    std::uint64_t shapesVersion() const { return shapesVersion_; }
 
     /// Host copies, mesh-major: element (mesh m, vertex v) at m * #V + v.
     struct Result {
@@ -83,20 +90,6 @@ public:
     const gpu::TexelView& c23Texels() const { return c23Texels_; }
     /// The wedges on the host (geometry/wedges.h), for kernels that need other views of the topology.
     const Wedges& hostWedges() const { return hostWedges_; }
-    /// Per vertex, a sphere holding that vertex in every mesh of the batch: centre xyz and
-    /// radius, mm (set by setPositions). Lets a view skip the vertices no mesh shows in it.
-    const std::vector<std::array<double, 4>>& vertexBounds() const { return vertexBounds_; }
-    /// Per vertex, a cone holding the normal the contour tests read (the packed one) in every
-    /// mesh where the vertex has a tangent plane: unit axis xyz and half-angle in radians, pi
-    /// where nothing narrower holds. Set by run() and uploadShapes(), empty before. Lets a view
-    /// skip the vertices that face away in every mesh.
-    const std::vector<std::array<double, 4>>& normalCones() const { return normalCones_; }
-    /// One bit per (mesh, vertex), bit i % 32 of texel i / 32 for batch index i: set where k_r
-    /// has one sign on the vertex's closed one-ring whatever the view (k1 and k2 of one sign at
-    /// the vertex and at each neighbour with a tangent plane), so that no zero crossing of k_r,
-    /// no suggestive contour, can touch it. Set by run() and uploadShapes(), all clear before.
-    const gpu::TexelView& signLockTexels() const { return signLockTexels_; }
-    const gpu::Buffer& signLocks() const { return signLocks_; }
     const gpu::Buffer& wedges() const { return wedges_; }
 
 private:
@@ -106,17 +99,15 @@ private:
     Eigen::Index vertexCount_;
     std::uint32_t meshCount_ = 0;
     bool shapesOnly_ = false; // restored by uploadShapes: the other result buffers are stale
+    bool hasShapes_ = false;
+    std::uint64_t positionsVersion_ = 0, shapesVersion_ = 0;
     gpu::ComputeProgram normalsProgram_, curvatureProgram_, derivativeProgram_;
     Wedges hostWedges_;
-    Neighbours hostRings_;
-    void setViewBounds(const std::vector<std::uint32_t>& shapes);
 
-    std::vector<std::array<double, 4>> vertexBounds_, normalCones_;
     gpu::Buffer wedgeOffsets_, wedges_;
     WedgeTexels wedgeTexels_;
     gpu::Buffer positions_, normals_, curvature_, directions_, derivatives_, shapes_, shapesC23_;
-    gpu::Buffer signLocks_;
-    gpu::TexelView positionTexels_, normalTexels_, curvatureTexels_, directionTexels_, shapeTexels_, c23Texels_, signLockTexels_;
+    gpu::TexelView positionTexels_, normalTexels_, curvatureTexels_, directionTexels_, shapeTexels_, c23Texels_;
     gpu::GpuTimer timer_;
 };
 

@@ -1,7 +1,7 @@
 #pragma once
-// Errors for bad input. Every message names what was wrong and where: the file and line for
-// files, the field for documents, the index and value for arrays. Code that detects a bad
-// input throws facesketch::Error; nothing already built is modified before the throw.
+// Errors for bad input. Every message names what was wrong and where: the file and line for files, the field for documents,
+// the index and value for arrays. Code that detects a bad input throws facesketch::Error; nothing already built is modified
+// before the throw. GPU or driver failures (a lost device, too little memory) throw the subclass gpu::GpuError (gpu/error.h).
 
 #include <sstream>
 #include <stdexcept>

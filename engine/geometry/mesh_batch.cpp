@@ -27,30 +27,30 @@ std::vector<float> toBatchLayout(const std::vector<float>& meshMajor, std::size_
     return batch;
 }
 
-std::vector<float> fromBatchLayout(const std::vector<float>& batch, std::size_t meshCount, std::size_t vertexCount)
+std::vector<float> fromBatchLayout(const std::vector<float>& batch, std::size_t meshCount, std::size_t vertexCount, std::size_t components)
 {
     checkSize(batch, meshCount, vertexCount, 4, "fromBatchLayout");
-    std::vector<float> meshMajor(meshCount * vertexCount * 3);
+    if (components < 1 || components > 4)
+        fail("fromBatchLayout: ", components, " components per vertex, expected 1 to 4");
+    std::vector<float> meshMajor(meshCount * vertexCount * components);
     for (std::size_t v = 0; v < vertexCount; ++v)
         for (std::size_t m = 0; m < meshCount; ++m)
-            for (std::size_t c = 0; c < 3; ++c)
-                meshMajor[3 * (m * vertexCount + v) + c] = batch[4 * (v * meshCount + m) + c];
+            for (std::size_t c = 0; c < components; ++c)
+                meshMajor[components * (m * vertexCount + v) + c] = batch[4 * (v * meshCount + m) + c];
     return meshMajor;
 }
 
 std::vector<float> meshMajorPositions(const std::vector<Mesh>& meshes)
 {
-    std::vector<float> out;
     if (meshes.empty())
-        return out;
-    out.reserve(meshes.size() * static_cast<size_t>(meshes[0].V.size()));
-    for (size_t m = 0; m < meshes.size(); ++m) {
-        if (meshes[m].V.rows() != meshes[0].V.rows())
-            fail("meshMajorPositions: mesh ", m, " has ", meshes[m].V.rows(), " vertices, mesh 0 has ", meshes[0].V.rows());
-        for (Eigen::Index v = 0; v < meshes[m].V.rows(); ++v)
-            for (int k = 0; k < 3; ++k)
-                out.push_back(static_cast<float>(meshes[m].V(v, k)));
-    }
+        return {};
+    const Eigen::Index nv = meshes[0].V.rows();
+    for (size_t m = 0; m < meshes.size(); ++m)
+        if (meshes[m].V.rows() != nv)
+            fail("meshMajorPositions: mesh ", m, " has ", meshes[m].V.rows(), " vertices, mesh 0 has ", nv);
+    std::vector<float> out(meshes.size() * static_cast<size_t>(nv) * 3);
+    for (size_t m = 0; m < meshes.size(); ++m)
+        meshInBatch(out, nv, m) = meshes[m].V.cast<float>();
     return out;
 }
 

@@ -17,8 +17,10 @@ namespace facesketch {
 /// Mesh-major (meshCount * vertexCount * 3 floats) to batch layout (4 floats per vertex). Throws Error if the size
 /// does not match.
 std::vector<float> toBatchLayout(const std::vector<float>& meshMajor, std::size_t meshCount, std::size_t vertexCount);
-/// Batch layout back to mesh-major.
-std::vector<float> fromBatchLayout(const std::vector<float>& batch, std::size_t meshCount, std::size_t vertexCount);
+/// Batch layout back to mesh-major, keeping the first `components` (1 to 4) of each vec4: 3 for
+/// positions and normals, 4 for per-vertex vec4 results (curvature, its derivative).
+std::vector<float> fromBatchLayout(
+    const std::vector<float>& batch, std::size_t meshCount, std::size_t vertexCount, std::size_t components = 3);
 
 /// The vertices of `meshes` as one mesh-major float array (mesh, then vertex, then xyz), the
 /// input of the batch kernels. Throws Error if the meshes differ in vertex count.

@@ -10,13 +10,7 @@
 
 namespace facesketch {
 
-namespace {
-struct alignas(16) NormalsConstants {
-    std::uint32_t vertexCount;
-    std::uint32_t meshCount;
-    std::uint32_t weighting;
-};
-} // namespace
+using shaders::NormalsConstants;
 
 GpuNormals::GpuNormals(gpu::Device& device, const Triangles& F, Eigen::Index vertexCount)
     : device_(device)
@@ -24,7 +18,8 @@ GpuNormals::GpuNormals(gpu::Device& device, const Triangles& F, Eigen::Index ver
 {
     if (vertexCount <= 0 || F.rows() == 0)
         fail("GpuNormals: need at least one vertex and one triangle (got ", vertexCount, " and ", F.rows(), ")");
-    program_ = gpu::createComputeProgram(device_, gpu::shaderCode(normals_comp), 4, sizeof(NormalsConstants), 0, NORMALS_TEXEL_BINDINGS);
+    program_ = gpu::createComputeProgram(
+        device_, gpu::shaderCode(normals_comp), NORMALS_BINDING_COUNT, sizeof(NormalsConstants), 0, NORMALS_TEXEL_BINDINGS);
     uploadWedges(device_, F, vertexCount, wedgeOffsets_, wedges_);
     wedgeTexels_ = createWedgeTexels(device_, wedgeOffsets_, wedges_);
     timer_ = gpu::createGpuTimer(device_);

@@ -50,7 +50,7 @@ Buffer createBuffer(Device& device, VkDeviceSize size, VkBufferUsageFlags usage,
     alloc.memoryTypeIndex = type;
     if (VkResult r = vkAllocateMemory(device.device, &alloc, nullptr, &b.memory); r != VK_SUCCESS) {
         vkDestroyBuffer(device.device, b.buffer, nullptr);
-        fail("cannot allocate ", size, " bytes of GPU memory: ", vkResultName(r));
+        gpuFail(cat("allocating ", size, " bytes of GPU memory (vkAllocateMemory)"), r);
     }
     VK_CHECK(vkBindBufferMemory(device.device, b.buffer, b.memory, 0));
     if ((device.memory.memoryTypes[type].propertyFlags & hostVisible) == hostVisible)
@@ -173,7 +173,7 @@ Image createImage(Device& device, std::uint32_t width, std::uint32_t height, VkF
     alloc.memoryTypeIndex = chooseMemoryType(device, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
     if (VkResult r = vkAllocateMemory(device.device, &alloc, nullptr, &image.memory); r != VK_SUCCESS) {
         vkDestroyImage(device.device, image.image, nullptr);
-        fail("cannot allocate a ", width, "x", height, " image: ", vkResultName(r));
+        gpuFail(cat("allocating a ", width, "x", height, " image (vkAllocateMemory)"), r);
     }
     VK_CHECK(vkBindImageMemory(device.device, image.image, image.memory, 0));
 

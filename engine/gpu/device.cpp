@@ -148,39 +148,6 @@ void pinVulkanLibraries()
 
 } // namespace
 
-const char* vkResultName(VkResult result)
-{
-    switch (result) {
-#define FACESKETCH_RESULT(name)                                                                                                            \
-    case name:                                                                                                                             \
-        return #name
-        FACESKETCH_RESULT(VK_SUCCESS);
-        FACESKETCH_RESULT(VK_NOT_READY);
-        FACESKETCH_RESULT(VK_TIMEOUT);
-        FACESKETCH_RESULT(VK_INCOMPLETE);
-        FACESKETCH_RESULT(VK_ERROR_OUT_OF_HOST_MEMORY);
-        FACESKETCH_RESULT(VK_ERROR_OUT_OF_DEVICE_MEMORY);
-        FACESKETCH_RESULT(VK_ERROR_INITIALIZATION_FAILED);
-        FACESKETCH_RESULT(VK_ERROR_DEVICE_LOST);
-        FACESKETCH_RESULT(VK_ERROR_MEMORY_MAP_FAILED);
-        FACESKETCH_RESULT(VK_ERROR_LAYER_NOT_PRESENT);
-        FACESKETCH_RESULT(VK_ERROR_EXTENSION_NOT_PRESENT);
-        FACESKETCH_RESULT(VK_ERROR_FEATURE_NOT_PRESENT);
-        FACESKETCH_RESULT(VK_ERROR_INCOMPATIBLE_DRIVER);
-        FACESKETCH_RESULT(VK_ERROR_TOO_MANY_OBJECTS);
-        FACESKETCH_RESULT(VK_ERROR_FORMAT_NOT_SUPPORTED);
-#undef FACESKETCH_RESULT
-    default:
-        return "VkResult(unknown)";
-    }
-}
-
-void vkFailed(const char* call, VkResult result, const char* file, int line)
-{
-    std::fprintf(stderr, "%s:%d: %s failed with %s (%d)\n", file, line, call, vkResultName(result), static_cast<int>(result));
-    std::abort();
-}
-
 std::uint64_t validationMessageCount()
 {
     return validationMessages.load();
@@ -225,7 +192,7 @@ Device createDevice(const DeviceOptions& options)
     instanceInfo.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
     instanceInfo.ppEnabledExtensionNames = extensions.data();
     if (VkResult r = vkCreateInstance(&instanceInfo, nullptr, &d.instance); r != VK_SUCCESS)
-        fail("vkCreateInstance failed with ", vkResultName(r), " (is a Vulkan driver installed? tools/setup-debian.sh)");
+        gpuFail("creating the Vulkan instance (vkCreateInstance; is a Vulkan driver installed? tools/setup-debian.sh)", r);
 
     if (d.validation) {
         auto create
@@ -335,12 +302,14 @@ void endOneShotAndWait(Device& d, VkCommandBuffer cmd)
     auto submit = makeStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &cmd;
-    VK_CHECK(vkQueueSubmit(d.queue, 1, &submit, fence));
-    VkResult waited = vkWaitForFences(d.device, 1, &fence, VK_TRUE, UINT64_MAX);
+    const VkResult submitted = vkQueueSubmit(d.queue, 1, &submit, fence);
+    const VkResult waited = submitted == VK_SUCCESS ? vkWaitForFences(d.device, 1, &fence, VK_TRUE, UINT64_MAX) : submitted;
     vkDestroyFence(d.device, fence, nullptr);
     vkFreeCommandBuffers(d.device, d.commandPool, 1, &cmd);
+    if (submitted != VK_SUCCESS)
+        gpuFail("submitting GPU work (vkQueueSubmit)", submitted);
     if (waited != VK_SUCCESS)
-        fail("GPU work did not finish: vkWaitForFences returned ", vkResultName(waited));
+        gpuFail("waiting for GPU work to finish (vkWaitForFences)", waited);
 }
 
 } // namespace facesketch::gpu

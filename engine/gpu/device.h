@@ -7,21 +7,14 @@
 //
 // Lifetime: plain structs with createX/destroyX pairs, destroyed in reverse order of creation.
 
+#include "gpu/error.h"
+
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
 #include <string>
 
 namespace facesketch::gpu {
-
-/// Aborts with the failing call and its VkResult; for calls that cannot fail in a correct
-/// program. Calls with legitimate failures (device lost, out of memory) are checked by hand.
-#define VK_CHECK(call)                                                                                                                     \
-    do {                                                                                                                                   \
-        VkResult vkCheckResult_ = (call);                                                                                                  \
-        if (vkCheckResult_ != VK_SUCCESS)                                                                                                  \
-            ::facesketch::gpu::vkFailed(#call, vkCheckResult_, __FILE__, __LINE__);                                                        \
-    } while (0)
 
 /// A zero-initialised Vulkan struct with its sType set: `auto info = makeStruct<VkBufferCreateInfo>(
 /// VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);` (brace-initialising only sType trips -Wextra).
@@ -31,9 +24,6 @@ template <typename T> T makeStruct(VkStructureType type)
     value.sType = type;
     return value;
 }
-
-[[noreturn]] void vkFailed(const char* call, VkResult result, const char* file, int line);
-const char* vkResultName(VkResult result);
 
 struct DeviceOptions {
     bool validation = false;        ///< also on when FACESKETCH_VALIDATION=1 or in a debug build
@@ -86,6 +76,8 @@ private:
 std::uint64_t validationMessageCount();
 
 /// Records commands through `record` into a one-shot command buffer, submits it and waits.
+/// Throws GpuError when the submission or the wait fails (a lost device), having freed the
+/// command buffer.
 template <typename F> void submitAndWait(Device& device, F&& record);
 
 // Implementation detail of submitAndWait.

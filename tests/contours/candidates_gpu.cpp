@@ -1,12 +1,13 @@
 #include "contours/candidates_gpu.h"
 #include "contours/candidates.h"
 #include "contours/curvature_gpu.h"
+#include "core/random.h"
+#include "geometry/mesh_batch.h"
 #include "geometry/primitives.h"
 #include "test_common.h"
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <set>
 
 using namespace facesketch;
@@ -23,18 +24,15 @@ struct Batch {
 Batch bumpyTori(int count, int rings = 96, int sides = 48, double radiusStep = 1.0)
 {
     Batch b;
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<double> phase(0, 2 * M_PI);
+    Random random(5);
     for (int m = 0; m < count; ++m) {
         Mesh t = makeTorus(30.0, 9.0 + radiusStep * m, rings, sides);
-        const double a = phase(rng), c = phase(rng);
+        const double a = random.uniform(0, 2 * M_PI), c = random.uniform(0, 2 * M_PI);
         for (Eigen::Index v = 0; v < t.V.rows(); ++v)
             t.V(v, 2) *= 1.0 + 0.2 * std::sin(0.15 * t.V(v, 0) + a) * std::cos(0.1 * t.V(v, 1) + c);
-        for (Eigen::Index v = 0; v < t.V.rows(); ++v)
-            for (int k = 0; k < 3; ++k)
-                b.positions.push_back(static_cast<float>(t.V(v, k)));
         b.meshes.push_back(t);
     }
+    b.positions = meshMajorPositions(b.meshes);
     return b;
 }
 
@@ -254,5 +252,89 @@ TEST_CASE("candidates_gpu: a stroke's box gives exactly the whole view's candida
             }
         REQUIRE(tiny >= 10);
     }
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("candidates_gpu: list, record into the caller's command buffer and collect after its fence give what build gives")
+{
+    // Every front-facing vertex labelled: the cloud outgrows the first output buffer, so
+    // collect() also grows it and runs the view again itself.
+    const Batch batch = bumpyTori(2);
+    const Eigen::Index nv = batch.meshes[0].V.rows();
+    GpuCurvature curvature(test::device(), batch.meshes[0].F, nv);
+    curvature.setPositions(batch.positions);
+    curvature.run();
+    const std::vector<std::uint32_t> flags(nv, VertexLabelled);
+    GpuCandidates split(test::device(), curvature, flags), whole(test::device(), curvature, flags);
+    ContourParams params;
+    params.silhouetteThreshold = defaultSilhouetteThreshold(nv);
+    params.suggestiveThreshold = 0.005;
+    params.featureSize = meanEdgeLength(batch.meshes[0]);
+    const Camera camera = frameMesh(batch.meshes[0], { 30, 25 }, 640, 480, Projection::Perspective);
+
+    REQUIRE_THROWS_WITH(split.collect(), Catch::Contains("no view recorded"));
+    gpu::Device& device = test::device();
+    for (int round = 0; round < 2; ++round) { // the first grows the output, the second fits
+        const std::uint32_t listed = split.list(camera, params);
+        REQUIRE(listed == split.listedVertices());
+        REQUIRE(listed > 0);
+        REQUIRE_THROWS_WITH(split.collect(), Catch::Contains("no view recorded"));
+        REQUIRE(split.list(camera, params) == listed); // listing again replaces the listed view
+        VkCommandBuffer cmd = gpu::beginOneShot(device);
+        split.record(cmd);
+        REQUIRE(vkEndCommandBuffer(cmd) == VK_SUCCESS);
+        auto fenceInfo = gpu::makeStruct<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
+        VkFence fence = VK_NULL_HANDLE;
+        REQUIRE(vkCreateFence(device.device, &fenceInfo, nullptr, &fence) == VK_SUCCESS);
+        auto submit = gpu::makeStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
+        submit.commandBufferCount = 1;
+        submit.pCommandBuffers = &cmd;
+        REQUIRE(vkQueueSubmit(device.queue, 1, &submit, fence) == VK_SUCCESS);
+        double ms = -2;
+        const std::vector<Candidate> got = split.collect(fence, &ms);
+        vkDestroyFence(device.device, fence, nullptr);
+        vkFreeCommandBuffers(device.device, device.commandPool, 1, &cmd);
+        REQUIRE(ms != -2);
+        REQUIRE_THROWS_WITH(split.collect(), Catch::Contains("no view recorded")); // collected once only
+
+        const std::vector<Candidate> expected = whole.build(camera, params);
+        REQUIRE(whole.listedVertices() == listed);
+        REQUIRE(got.size() > std::max<size_t>(1024, 2 * nv / 16)); // beyond the initial capacity
+        REQUIRE(got.size() == expected.size());
+        for (size_t i = 0; i < got.size(); ++i) {
+            INFO("candidate " << i);
+            REQUIRE(got[i].mesh == expected[i].mesh);
+            REQUIRE(got[i].vertex == expected[i].vertex);
+            REQUIRE(got[i].types == expected[i].types);
+            for (int k = 0; k < 3; ++k)
+                REQUIRE(got[i].world[k] == expected[i].world[k]);
+            for (int k = 0; k < 2; ++k)
+                REQUIRE(got[i].screen[k] == expected[i].screen[k]);
+            REQUIRE(got[i].depth == expected[i].depth);
+        }
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("candidates_gpu: a view nobody may see lists nothing, records nothing and collects no candidates")
+{
+    const Batch batch = bumpyTori(1);
+    const Eigen::Index nv = batch.meshes[0].V.rows();
+    GpuCurvature curvature(test::device(), batch.meshes[0].F, nv);
+    curvature.setPositions(batch.positions);
+    curvature.run();
+    GpuCandidates gpu(test::device(), curvature, {});
+    REQUIRE_THROWS_WITH(gpu.record(VK_NULL_HANDLE), Catch::Contains("no view listed"));
+    ContourParams params;
+    params.featureSize = meanEdgeLength(batch.meshes[0]);
+    params.sphere[0] = 1000; // a culling sphere far from the torus
+    params.sphere[3] = 1;
+    const Camera camera = frameMesh(batch.meshes[0], { 0, 0 }, 640, 480);
+    REQUIRE(gpu.list(camera, params) == 0);
+    double ms = -1;
+    REQUIRE(gpu.collect(VK_NULL_HANDLE, &ms).empty()); // nothing to record, nothing to wait for
+    REQUIRE(ms == 0);
+    REQUIRE(gpu.build(camera, params, &ms).empty());
+    REQUIRE(gpu.listedVertices() == 0);
     REQUIRE_NO_VALIDATION_MESSAGES();
 }

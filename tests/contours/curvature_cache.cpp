@@ -3,6 +3,7 @@
 #include "contours/curvature_cache.h"
 
 #include "contours/candidates_gpu.h"
+#include "geometry/mesh_batch.h"
 #include "geometry/primitives.h"
 #include "test_common.h"
 
@@ -12,16 +13,6 @@
 using namespace facesketch;
 
 namespace {
-
-std::vector<float> positionsOf(const std::vector<Mesh>& meshes)
-{
-    std::vector<float> out;
-    for (const Mesh& m : meshes)
-        for (Eigen::Index v = 0; v < m.V.rows(); ++v)
-            for (int k = 0; k < 3; ++k)
-                out.push_back(static_cast<float>(m.V(v, k)));
-    return out;
-}
 
 std::vector<Candidate> cloudOf(GpuCurvature& curvature, const Mesh& first)
 {
@@ -55,7 +46,7 @@ TEST_CASE("curvature_cache: the second run reads the file and gives the same clo
             t.V(v, 2) *= 1.0 + 0.1 * std::sin(0.2 * t.V(v, 0) + m);
         meshes.push_back(t);
     }
-    const std::vector<float> positions = positionsOf(meshes);
+    const std::vector<float> positions = meshMajorPositions(meshes);
     const Triangles& F = meshes[0].F;
     const Eigen::Index nv = meshes[0].V.rows();
 

@@ -64,20 +64,6 @@ TEST_CASE("compute: uniform and texel masks that overlap are refused")
         Catch::Contains("both uniform and texel"));
 }
 
-TEST_CASE("buffers: a texel view must cover whole texels")
-{
-    gpu::Device& d = test::device();
-    gpu::Buffer buffer = gpu::createBuffer(d, 20, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
-    REQUIRE_THROWS_WITH(
-        gpu::createTexelView(d, buffer, VK_FORMAT_R32G32B32A32_UINT), Catch::Contains("20 bytes is not a whole number of 16-byte texels"));
-    REQUIRE_THROWS_WITH(gpu::createTexelView(d, buffer, VK_FORMAT_R8G8B8A8_UNORM), Catch::Contains("is not one of the 32-bit formats"));
-    gpu::TexelView view = gpu::createTexelView(d, buffer, VK_FORMAT_R32_UINT);
-    REQUIRE(view.elements == 5);
-    gpu::destroyTexelView(d, view);
-    gpu::destroyBuffer(d, buffer);
-    REQUIRE_NO_VALIDATION_MESSAGES();
-}
-
 TEST_CASE("compute: a SPIR-V file reads back word for word, and a bad one is an error naming it")
 {
     const std::filesystem::path dir = std::filesystem::temp_directory_path() / "facesketch_test_spirv";
