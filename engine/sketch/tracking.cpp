@@ -4,6 +4,7 @@
 #include "sketch/symmetry.h"
 
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -188,28 +189,44 @@ void TrackingModel::apply(const StrokeReading& reading, const ApplyOptions& opti
         }
     }
 
-    // Step 1: supersede older constraints of similar views near the newly mapped vertices.
-    std::vector<Eigen::Vector3d> mapped;
+    // Step 1: supersede older constraints of similar views on the vertices the stroke maps to
+    // and near the line it drew (its projected points; the mapped vertices for a reading
+    // without them), measured in the stroke's view plane: what the user drew over.
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> drawn; // segments, world mm
+    if (reading.worldPoints.size() >= 2 && reading.worldPoints.front().allFinite()) {
+        for (size_t k = 1; k < reading.worldPoints.size(); ++k)
+            if (reading.worldPoints[k].allFinite() && reading.worldPoints[k - 1].allFinite())
+                drawn.push_back({ reading.worldPoints[k - 1], reading.worldPoints[k] });
+    } else {
+        for (const VertexObservation& o : reading.observations)
+            drawn.push_back({ next.face.segment<3>(3 * o.vertex), next.face.segment<3>(3 * o.vertex) });
+    }
+    if (options.mirror) {
+        const size_t own = drawn.size();
+        for (size_t k = 0; k < own; ++k)
+            drawn.push_back({ options.mirror->mirror(drawn[k].first), options.mirror->mirror(drawn[k].second) });
+    }
+    // Distances in the view plane (in 3D for a reading without a view).
+    const Eigen::Matrix3d measure = hasView ? Eigen::Matrix3d(P.transpose() * P) : Eigen::Matrix3d::Identity();
+    auto nearDrawn = [&](const Eigen::Vector3d& x) {
+        for (const auto& [a, b] : drawn) {
+            const Eigen::Vector3d d = measure * (b - a), q = measure * (x - a);
+            const double t = d.squaredNorm() > 0 ? std::clamp(q.dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+            if ((q - t * d).norm() <= options_.supersedeRadius)
+                return true;
+        }
+        return false;
+    };
+    std::vector<bool> mapsTo(next.constraints.size(), false);
     for (const auto& [v, c] : added)
-        mapped.push_back(next.face.segment<3>(3 * v));
-    const double r2 = options_.supersedeRadius * options_.supersedeRadius;
+        mapsTo[v] = true;
     for (size_t v = 0; v < next.constraints.size(); ++v) {
         auto& list = next.constraints[v];
-        if (list.empty())
-            continue;
-        const Eigen::Vector3d x = next.face.segment<3>(3 * static_cast<Eigen::Index>(v));
-        bool near = false;
-        for (const Eigen::Vector3d& p : mapped)
-            if ((p - x).squaredNorm() <= r2) {
-                near = true;
-                break;
-            }
-        if (!near)
+        if (list.empty() || !(mapsTo[v] || nearDrawn(next.face.segment<3>(3 * static_cast<Eigen::Index>(v)))))
             continue;
         std::erase_if(list, [&](const VertexConstraint& c) {
             // A 3D constraint (or a stroke without a view) has no view to combine with.
-            const bool similar = !hasView || c.rows == 3 || c.viewAxis.dot(axis) >= cosLimit;
-            return similar;
+            return !hasView || c.rows == 3 || c.viewAxis.dot(axis) >= cosLimit;
         });
     }
     // Step 2: add the new constraints. A vertex keeps one constraint per stroke.

@@ -7,9 +7,10 @@
 // (the view's x and y rows) for one pinned only in a view's image plane. After each stroke:
 //   1. supersede (beyond the thesis, whose 4.7.3 and 4.10 name the problem): every constraint of
 //      an older stroke drawn from a similar view (view directions within `supersedeAngleDeg`)
-//      on a vertex within `supersedeRadius` mm of a vertex the new stroke maps to (on the
-//      current face) is dropped, so oversketching a feature replaces it instead of averaging
-//      two shapes into a corrupt one;
+//      on a vertex the new stroke maps to, or whose current position lies within
+//      `supersedeRadius` mm of the line the new stroke drew (its projected points, measured in
+//      its view plane), is dropped, so oversketching a feature replaces it instead of averaging
+//      two shapes into a corrupt one, while a neighbouring feature drawn beside it stays;
 //   2. the new constraints are added; constraints from different views on one vertex combine
 //      (4.7.2): their rows are stacked, and the vertex is measured by the least-squares position
 //      (in 3D when the rows span 3D, else in the plane they span);
@@ -32,9 +33,11 @@ namespace facesketch::sketch {
 class MirrorMap;
 
 struct TrackingOptions {
-    /// Step 1: older constraints within this distance (mm, on the current face) of a newly
-    /// mapped vertex are superseded; 0 supersedes only the very vertices the stroke maps to.
-    double supersedeRadius = 4.0;
+    /// Step 1: older constraints within this distance (mm, in the stroke's view plane) of the
+    /// line the stroke drew are superseded; 0 supersedes only the vertices the stroke maps to.
+    /// About a high-resolution edge: a redrawn line that lands on the neighbouring vertices
+    /// replaces the old one, while the inner and outer lip lines a few mm apart both stay.
+    double supersedeRadius = 2.0;
     /// Step 1: only constraints of strokes whose view direction is within this angle (degrees)
     /// of the new stroke's are superseded; those of other views combine with it.
     double supersedeAngleDeg = 30.0;
