@@ -81,6 +81,7 @@ Mapping mapHeuristic(const MappingProblem& problem)
     const EndpointTerms firstTerms = endpointTerms(problem, points, true);
     const EndpointTerms lastTerms = endpointTerms(problem, points, false);
     const double lambdaPx = params.lambda * problem.tau;
+    const double endpointRadiusPx = params.heuristicEndpointRadiusTau * problem.tau;
     auto screenOf = [](const Candidate& c) { return Eigen::Vector2d(c.screen[0], c.screen[1]); };
 
     struct Assigned {
@@ -100,7 +101,10 @@ Mapping mapHeuristic(const MappingProblem& problem)
         for (std::size_t j = 0; j < set.size(); ++j) {
             const Candidate& c = problem.cloud[static_cast<std::size_t>(set[j])];
             double grade = 0;
-            // psi: the endpoint term on the first and last point only (4.29).
+            // psi: the endpoint term on the first and last point only (4.29), among the
+            // candidates near the end point (the set is nearest first).
+            if ((isFirst || isLast) && j > 0 && (screenOf(c) - problem.screen[i]).norm() > endpointRadiusPx)
+                continue;
             if (isFirst)
                 grade += lambdaPx * (firstTerms.sx[j] + firstTerms.sy[j]);
             else if (isLast)

@@ -65,6 +65,7 @@ void MapperParams::validate() const
     nonNegative("lambda", lambda);
     nonNegative("alpha", alpha);
     nonNegative("beta", beta);
+    nonNegative("heuristicEndpointRadiusTau", heuristicEndpointRadiusTau);
 }
 
 namespace {

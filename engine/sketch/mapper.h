@@ -90,8 +90,14 @@ struct MapperParams {
     double alpha = 0.5;  ///< weight of s1 (4.36); alpha + beta = 1
     double beta = 0.5;   ///< weight of s2 (4.37)
     /// Multiply the grade's error by (1 + hops) between the previous and the candidate vertex
-    /// (4.9's "heuristic approach with connectivity").
-    bool heuristicConnectivity = false;
+    /// (4.9's "heuristic approach with connectivity", which the thesis found much better than
+    /// 4.29 alone; here too: on the lip test, 0.9 of the vertices on or next to the lip with it,
+    /// 0.5 without). false gives 4.6's grade alone.
+    bool heuristicConnectivity = true;
+    /// The endpoint term chooses among the end point's candidates within this many tau (and
+    /// always the nearest): 4.30-4.31 pick the box's extreme, which over the whole candidate
+    /// radius overshoots the stroke's end. Not in the thesis (its radius was one threshold).
+    double heuristicEndpointRadiusTau = 0.5;
 
     /// The thesis' values (the defaults).
     static MapperParams thesis() { return {}; }

@@ -84,7 +84,7 @@ TEST_CASE("mapper: a stroke traced along the mean face's upper lip maps to the u
     const std::vector<int>& lip = w.contours.at("lip_upper_outer");
     const Stroke stroke = traceOf(w.mean, lip);
     const RingDistances rings(w.model.triangles, w.model.vertexCount(), 4);
-    for (MapperKind kind : { MapperKind::Nearest, MapperKind::Hmm, MapperKind::Simple }) {
+    for (MapperKind kind : { MapperKind::Nearest, MapperKind::Heuristic, MapperKind::Hmm, MapperKind::Simple }) {
         const StrokeReading r = reader.read(stroke, w.mean, kind);
         checkWellFormed(r, w.model.vertexCount());
         const auto [nearShare, covered] = overlap(r, lip, rings, 1);
@@ -114,5 +114,103 @@ TEST_CASE("mapper: a stroke traced along the mean face's upper lip maps to the u
             }
         }
     }
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("mapper: bad strokes are refused by name and odd ones give well-defined readings, with every mapper")
+{
+    const test::SketchWorld& w = test::sketchWorld();
+    StrokeReader reader(test::device(), w.model, w.candidateFaces, w.flags);
+    const std::vector<int>& lip = w.contours.at("lip_upper_outer");
+    const Stroke good = traceOf(w.mean, lip);
+    const Mesh before = w.mean;
+    for (MapperKind kind : { MapperKind::Nearest, MapperKind::Heuristic, MapperKind::Hmm, MapperKind::Simple }) {
+        INFO(mapperName(kind));
+        // Refused, naming what is wrong.
+        Stroke empty = good;
+        empty.points.clear();
+        REQUIRE_THROWS_WITH(reader.read(empty, w.mean, kind), Catch::Contains("no points"));
+        Stroke nan = good;
+        nan.points[4].x = std::nan("");
+        REQUIRE_THROWS_WITH(reader.read(nan, w.mean, kind), Catch::Contains("point 4 has x = nan"));
+        Stroke inf = good;
+        inf.points[2].y = -INFINITY;
+        REQUIRE_THROWS_WITH(reader.read(inf, w.mean, kind), Catch::Contains("point 2 has y = -inf"));
+        Mesh wrong = w.mean;
+        wrong.V.conservativeResize(wrong.V.rows() - 1, 3);
+        REQUIRE_THROWS_WITH(reader.read(good, wrong, kind), Catch::Contains("current face has"));
+        MapperParams bad;
+        bad.sigmaStroke = -1;
+        REQUIRE_THROWS_WITH(reader.read(good, w.mean, kind, bad), Catch::Contains("sigmaStroke = -1"));
+
+        // One point on the lip: at most one vertex, from that point.
+        Stroke one = good;
+        one.points = { good.points[lip.size() / 2] };
+        const StrokeReading r1 = reader.read(one, w.mean, kind);
+        checkWellFormed(r1, w.model.vertexCount());
+        CHECK(r1.screenPoints.size() == 1);
+        CHECK(r1.observations.size() == 1);
+
+        // Zero length: many copies of one point read as that point.
+        Stroke still = one;
+        still.points.assign(20, one.points[0]);
+        const StrokeReading r0 = reader.read(still, w.mean, kind);
+        checkWellFormed(r0, w.model.vertexCount());
+        CHECK(r0.observations.size() == 1);
+
+        // Far off screen: nothing read, and said so.
+        Stroke far = good;
+        for (StrokePoint& p : far.points)
+            p.x += 1e9;
+        const StrokeReading rf = reader.read(far, w.mean, kind);
+        checkWellFormed(rf, w.model.vertexCount());
+        CHECK(rf.observations.empty());
+        CHECK_THAT(rf.message, Catch::Contains("no point of the stroke lies on screen"));
+        // Partly far off: the on-screen part is read.
+        Stroke partly = good;
+        partly.points.push_back({ 1e12, -1e12, std::nullopt });
+        const StrokeReading rp = reader.read(partly, w.mean, kind);
+        checkWellFormed(rp, w.model.vertexCount());
+        CHECK(rp.observations.size() >= lip.size() / 2);
+        CHECK_THAT(rp.message, Catch::Contains("no contour candidate"));
+
+        // Over empty background (the viewport's corner): nothing read, and said so.
+        Stroke corner = good;
+        corner.points = { { 3, 3, std::nullopt }, { 40, 8, std::nullopt }, { 60, 30, std::nullopt } };
+        const StrokeReading rc = reader.read(corner, w.mean, kind);
+        checkWellFormed(rc, w.model.vertexCount());
+        CHECK(rc.observations.empty());
+        CHECK_THAT(rc.message, Catch::Contains("no contour candidate") && Catch::Contains("misses the face"));
+
+        // A self-crossing scribble over the mouth: read, one observation per vertex at most.
+        Stroke scribble = good;
+        scribble.points.clear();
+        const StrokePoint c = one.points[0];
+        for (int k = 0; k <= 200; ++k) {
+            const double t = k * 0.1;
+            scribble.points.push_back({ c.x + 30 * std::sin(t), c.y + 15 * std::sin(2 * t), std::nullopt });
+        }
+        const StrokeReading rs = reader.read(scribble, w.mean, kind);
+        checkWellFormed(rs, w.model.vertexCount());
+        CHECK(!rs.observations.empty());
+
+        // 10,000 points along the lip (dense): read like the lip itself.
+        Stroke dense = good;
+        dense.points.clear();
+        for (int k = 0; k < 10000; ++k) {
+            const double t = k / 9999.0 * (lip.size() - 1);
+            const std::size_t a = std::min(static_cast<std::size_t>(t), lip.size() - 2);
+            const double f = t - a;
+            dense.points.push_back({ (1 - f) * good.points[a].x + f * good.points[a + 1].x,
+                (1 - f) * good.points[a].y + f * good.points[a + 1].y, std::nullopt });
+        }
+        const StrokeReading rd = reader.read(dense, w.mean, kind);
+        checkWellFormed(rd, w.model.vertexCount());
+        CHECK(rd.screenPoints.size() == 10000);
+        CHECK(rd.observations.size() >= lip.size() / 2);
+        CHECK(reader.lastTiming().mappingMs < 5000);
+    }
+    // The caller's face is untouched.
+    REQUIRE(w.mean.V == before.V);
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
