@@ -27,7 +27,8 @@ struct EvalStrokesCommand {
     double noise = 1.0, extreme = 1.0, errorScale = 10.0;
     int size = 1024, renders = 2, maxFaces = 0;
     std::uint64_t seed = 1;
-    bool noCorrelation = false, quiet = false;
+    bool noCorrelation = false, quiet = false, noProject = false;
+    double supersedeRadius = sketch::TrackingOptions {}.supersedeRadius;
 };
 
 std::vector<sketch::MapperKind> parseMappers(const std::string& text)
@@ -84,6 +85,8 @@ void runEvalStrokes(const EvalStrokesCommand& c)
     o.simulate.imageSize = c.size;
     o.simulate.seed = c.seed;
     o.correlation = !c.noCorrelation;
+    o.tracking.supersedeRadius = c.supersedeRadius;
+    o.tracking.projectOntoFaceSpace = !c.noProject;
     o.keepFaces = c.output.empty() ? 0 : c.renders;
     if (!c.quiet)
         o.progress = [](const std::string& line) { std::cout << "# " << line << std::endl; };
@@ -105,7 +108,8 @@ void runEvalStrokes(const EvalStrokesCommand& c)
                 { "strokes", r.strokes }, { "unread", r.unread }, { "failed", r.failed }, { "observed_vertices", r.observedVertices },
                 { "read_ms", r.readMs }, { "apply_ms", r.applyMs } });
         const nlohmann::json doc { { "model", c.model }, { "dataset", c.dataset }, { "vertices", m.vertexCount() },
-            { "image_size", c.size }, { "seed", c.seed }, { "correlation", !c.noCorrelation }, { "results", records } };
+            { "image_size", c.size }, { "seed", c.seed }, { "correlation", !c.noCorrelation }, { "supersede_radius_mm", c.supersedeRadius },
+            { "project_onto_face_space", !c.noProject }, { "results", records } };
         writeFileAtomically(c.json, [&](std::ostream& out) { out << doc.dump(1) << "\n"; });
         std::cout << "wrote " << c.json << "\n";
     }
@@ -153,6 +157,10 @@ void addEvalStrokesCommand(CLI::App& eval)
     cmd->add_option("--seed", c->seed, "Seed of the simulated strokes")->capture_default_str();
     cmd->add_option("--max-faces", c->maxFaces, "Sketch only the first N test faces (0: all)")->check(CLI::Range(0, 100000));
     cmd->add_flag("--no-correlation", c->noCorrelation, "Unmeasured segments keep the mean face");
+    cmd->add_option("--supersede-radius", c->supersedeRadius, "Tracking: older constraints this near a new stroke's line are replaced, mm")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1000.0));
+    cmd->add_flag("--no-project", c->noProject, "Tracking: keep the strokes' own positions instead of projecting them onto the face space");
     cmd->add_option("--json", c->json, "Write the records to this JSON file");
     cmd->add_option("-o,--output", c->output, "Folder for colour-coded error renders (blue to red)");
     cmd->add_option("--renders", c->renders, "Test faces to render")->capture_default_str();

@@ -212,6 +212,9 @@ Session parseSession(const std::string& text, const std::string& where)
     } catch (const json::parse_error& e) {
         // nlohmann's byte offset tells a truncated file (offset at the end) from a typo.
         fail(where, ": not a complete JSON document (", text.size(), " bytes; truncated?): ", e.what());
+    } catch (const json::exception& e) {
+        // e.g. a number too large for a double ("1e999"): nlohmann names its text, not its path.
+        fail(where, ": not a valid session document: ", e.what());
     }
     const Node root { doc, "", where };
     root.object({ "format", "version", "model", "dataset", "actions" });

@@ -43,9 +43,9 @@ struct Session {
 };
 
 /// Parses a session document. Throws Error "<where>: <JSON path>: <problem>" for any bad field,
-/// e.g. "s.json: actions[3].stroke.points[12].x: not a finite number (nan)": a missing or
-/// mistyped field, an unknown key, a wrong format or version, a NaN or infinite coordinate or
-/// time, times that go backwards, an empty stroke, a bad view (the orbitCamera rule), an
+/// e.g. "s.json: actions[3].stroke.points[12].x: expected a number, found null": a missing or
+/// mistyped field, an unknown key, a wrong format or version, a number that overflows a double
+/// (named by its text), times that go backwards, an empty stroke, a bad view (the orbitCamera rule), an
 /// unknown surface or mapper.
 Session parseSession(const std::string& text, const std::string& where);
 

