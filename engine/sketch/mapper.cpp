@@ -6,11 +6,14 @@
 #include "core/stopwatch.h"
 #include "geometry/graph.h"
 #include "geometry/mesh_batch.h"
+#include "geometry/wedges.h"
 #include "sketch/mappers.h"
 #include "sketch/projection.h"
 #include "sketch/stroke_candidates.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 
 namespace facesketch::sketch {
@@ -54,6 +57,8 @@ void MapperParams::validate() const
     positive("tauMm", tauMm);
     positive("candidateRadiusTau", candidateRadiusTau);
     positive("depthToleranceMm", depthToleranceMm);
+    if (borderRings < 0 || borderRings > 16)
+        fail("mapper parameter borderRings = ", borderRings, " must be in [0, 16]");
     if (maxCandidatesPerPoint < 1)
         fail("mapper parameter maxCandidatesPerPoint = ", maxCandidatesPerPoint, " must be at least 1");
     positive("sigmaS", sigmaS);
@@ -82,13 +87,43 @@ struct StrokeReader::Impl {
         curvature.setPositions(meshMajorPositions(faces));
         curvature.run();
         cloud.emplace(device, curvature, flags);
+        faceCount = static_cast<std::uint32_t>(faces.size());
         Mesh mean;
         mean.F = model.triangles;
         mean.V.resize(model.vertexCount(), 3);
         for (Eigen::Index v = 0; v < model.vertexCount(); ++v)
             mean.V.row(v) = model.meanFace.segment<3>(3 * v).transpose();
         featureSize = meanEdgeLength(mean);
+        // Hops from the open border (edges of one triangle), up to kBorderScan rings.
+        std::map<std::pair<int, int>, int> edgeUse;
+        for (Eigen::Index t = 0; t < model.triangles.rows(); ++t)
+            for (int c = 0; c < 3; ++c) {
+                const int a = model.triangles(t, c), b = model.triangles(t, (c + 1) % 3);
+                ++edgeUse[{ std::min(a, b), std::max(a, b) }];
+            }
+        borderHops.assign(static_cast<std::size_t>(model.vertexCount()), kBorderScan);
+        std::vector<std::uint32_t> frontier;
+        for (const auto& [edge, uses] : edgeUse)
+            if (uses == 1)
+                for (int v : { edge.first, edge.second })
+                    if (borderHops[static_cast<std::size_t>(v)] != 0) {
+                        borderHops[static_cast<std::size_t>(v)] = 0;
+                        frontier.push_back(static_cast<std::uint32_t>(v));
+                    }
+        const Neighbours oneRing = buildNeighbours(buildWedges(model.triangles, model.vertexCount()));
+        for (int h = 1; h < kBorderScan && !frontier.empty(); ++h) {
+            std::vector<std::uint32_t> next;
+            for (std::uint32_t v : frontier)
+                for (std::uint32_t e = oneRing.offsets[v]; e < oneRing.offsets[v + 1]; ++e)
+                    if (borderHops[oneRing.vertices[e]] > h) {
+                        borderHops[oneRing.vertices[e]] = h;
+                        next.push_back(oneRing.vertices[e]);
+                    }
+            frontier.swap(next);
+        }
     }
+    static constexpr int kBorderScan = 16;
+    std::vector<int> borderHops; // per vertex: rings from the open border (kBorderScan: further)
 
     std::vector<std::uint32_t> flags;
     GpuCurvature curvature;
@@ -96,6 +131,7 @@ struct StrokeReader::Impl {
     RingDistances rings;
     gpu::Device& device;
     double featureSize = 1;
+    std::uint32_t faceCount = 0;
     // The simple mapper's own-contour pass: one mesh (the current face), made on first use.
     std::unique_ptr<GpuCurvature> ownCurvature;
     std::optional<GpuCandidates> ownCloud;
@@ -153,9 +189,7 @@ StrokeReading StrokeReader::read(const Stroke& stroke, const Mesh& currentFace, 
         timing_ = { clock.milliseconds(), 0 };
         return reading;
     }
-    std::vector<Candidate> cloud;
-    if (kind == MapperKind::Simple) {
-        // 4.6.3: the current face's own contours instead of the training faces' cloud.
+    auto ownCandidates = [&] {
         if (!impl_->ownCurvature) {
             impl_->ownCurvature = std::make_unique<GpuCurvature>(impl_->device, model_.triangles, nv);
             impl_->ownCurvature->setPositions(meshMajorPositions({ currentFace }));
@@ -165,10 +199,27 @@ StrokeReading StrokeReader::read(const Stroke& stroke, const Mesh& currentFace, 
             impl_->ownCurvature->setPositions(meshMajorPositions({ currentFace }));
             impl_->ownCurvature->run();
         }
-        cloud = impl_->ownCloud->build(camera, contour);
+        return impl_->ownCloud->build(camera, contour);
+    };
+    std::vector<Candidate> cloud;
+    if (kind == MapperKind::Simple) {
+        // 4.6.3: the current face's own contours instead of the training faces' cloud.
+        cloud = ownCandidates();
     } else {
         cloud = impl_->cloud->build(camera, contour);
+        if (params.ownContours)
+            for (Candidate c : ownCandidates()) {
+                c.mesh = impl_->faceCount;
+                cloud.push_back(c);
+            }
     }
+    if (params.borderRings > 0)
+        cloud.erase(std::remove_if(cloud.begin(), cloud.end(),
+                        [&](const Candidate& c) {
+                            return !(c.types & ContourLabelled) && (c.types & ContourSilhouette)
+                                && impl_->borderHops[c.vertex] < params.borderRings;
+                        }),
+            cloud.end());
     const std::vector<std::vector<int>> perPoint = candidatesPerPoint(
         cloud, camera, projected.screen, projected.world, radiusPx, params.depthToleranceMm, params.maxCandidatesPerPoint);
     std::size_t withCandidates = 0;
@@ -205,6 +256,8 @@ StrokeReading StrokeReader::read(const Stroke& stroke, const Mesh& currentFace, 
     }
     reading.chosen = mapping.chosen;
     reading.observations = std::move(mapping.observations);
+    for (VertexObservation& o : reading.observations)
+        o.viewPlaneOnly = params.viewPlaneOnly;
     if (withCandidates < n)
         reading.message
             = cat(n - withCandidates, " of ", n, " points have no contour candidate within ", radiusPx, " px and were not read");

@@ -70,6 +70,19 @@ struct MapperParams {
     double depthToleranceMm = 40.0;
     /// At most this many candidates per point, the nearest on screen (bounds m in O(n m^2)).
     int maxCandidatesPerPoint = 48;
+    /// Silhouette candidates (not labelled) on vertices fewer than this many rings from the
+    /// mesh's open border are dropped: a face mask's border seen edge-on is a silhouette of
+    /// the mask, not of the face (issue 12's suspect). 0 keeps them all (the thesis).
+    int borderRings = 0;
+    /// The current face's own contour candidates join the training faces' cloud (mesh index
+    /// = the number of candidate faces). Beyond the thesis: as the face approaches the sketched
+    /// one, its own contours carry the right vertex where other faces offer a neighbour's
+    /// (evaluation/contour_eval.h does the same in its refinements). Costs the curvature of one
+    /// mesh per stroke.
+    bool ownContours = false;
+    /// Observations pin only the image of the vertex in the view (its depth is left to the
+    /// model) instead of the candidate's depth adapted to the stroke (4.6.2).
+    bool viewPlaneOnly = false;
 
     // --- HMM (4.8.5) ---
     double sigmaS = 0.4;             ///< initial probability, eq. 4.45

@@ -5,8 +5,10 @@
 #include "geometry/graph.h"
 #include "test_common.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <set>
 
 using namespace facesketch;
@@ -212,5 +214,82 @@ TEST_CASE("mapper: bad strokes are refused by name and odd ones give well-define
     }
     // The caller's face is untouched.
     REQUIRE(w.mean.V == before.V);
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("mapper: options: the open border's silhouette dropped, view-plane-only observations, the face's own contours")
+{
+    const test::SketchWorld& w = test::sketchWorld();
+    StrokeReader reader(test::device(), w.model, w.candidateFaces, w.flags);
+    // The open border of the skin (edges of one triangle), ordered by angle around the face's
+    // centre in the front view: a stroke along the mask's outline.
+    std::map<std::pair<int, int>, int> uses;
+    for (Eigen::Index t = 0; t < w.model.triangles.rows(); ++t)
+        for (int c = 0; c < 3; ++c) {
+            const int a = w.model.triangles(t, c), b = w.model.triangles(t, (c + 1) % 3);
+            ++uses[{ std::min(a, b), std::max(a, b) }];
+        }
+    std::set<int> border;
+    for (const auto& [e, n] : uses)
+        if (n == 1) {
+            border.insert(e.first);
+            border.insert(e.second);
+        }
+    REQUIRE(border.size() > 20);
+    const Eigen::RowVector3d centre = w.mean.V.colwise().mean();
+    std::vector<std::pair<double, int>> around;
+    for (int v : border)
+        if (w.mean.V(v, 1) < centre.y()) // the lower half: jaw and neck line
+            around.push_back({ std::atan2(w.mean.V(v, 1) - centre.y(), w.mean.V(v, 0) - centre.x()), v });
+    std::sort(around.begin(), around.end());
+    std::vector<int> path;
+    for (const auto& [angle, v] : around)
+        path.push_back(v);
+    const Stroke outline = traceOf(w.mean, path);
+
+    MapperParams keep, drop;
+    drop.borderRings = 2;
+    for (MapperKind kind : { MapperKind::Nearest, MapperKind::Hmm }) {
+        INFO(mapperName(kind));
+        const StrokeReading all = reader.read(outline, w.mean, kind, keep);
+        const StrokeReading culled = reader.read(outline, w.mean, kind, drop);
+        int borderAll = 0, borderCulled = 0;
+        for (const auto& o : all.observations)
+            borderAll += border.count(static_cast<int>(o.vertex)) && !(w.flags[o.vertex] & VertexLabelled);
+        for (const auto& o : culled.observations)
+            borderCulled += border.count(static_cast<int>(o.vertex)) && !(w.flags[o.vertex] & VertexLabelled);
+        std::cout << mapperName(kind) << ": " << borderAll << " of " << all.observations.size() << " observations on the open border, "
+                  << borderCulled << " of " << culled.observations.size() << " with borderRings 2\n";
+        CHECK(borderAll > 0);
+        CHECK(borderCulled < borderAll);
+        long countAll = 0, countCulled = 0;
+        for (std::size_t i = 0; i < all.candidateCounts.size(); ++i) {
+            countAll += all.candidateCounts[i];
+            countCulled += culled.candidateCounts[i];
+        }
+        CHECK(countCulled < countAll);
+    }
+
+    const std::vector<int>& lip = w.contours.at("lip_upper_outer");
+    const Stroke stroke = traceOf(w.mean, lip);
+    MapperParams planeOnly;
+    planeOnly.viewPlaneOnly = true;
+    const StrokeReading r = reader.read(stroke, w.mean, MapperKind::Hmm, planeOnly);
+    REQUIRE(!r.observations.empty());
+    for (const auto& o : r.observations)
+        CHECK(o.viewPlaneOnly);
+    for (const auto& o : reader.read(stroke, w.mean, MapperKind::Hmm).observations)
+        CHECK_FALSE(o.viewPlaneOnly);
+
+    // With the current face's own contours (here the mean face, whose labelled lip lies exactly
+    // under the stroke) among the candidates, the HMM maps onto the lip's own vertices.
+    MapperParams own;
+    own.ownContours = true;
+    const StrokeReading ro = reader.read(stroke, w.mean, MapperKind::Hmm, own);
+    checkWellFormed(ro, w.model.vertexCount());
+    const RingDistances rings(w.model.triangles, w.model.vertexCount(), 4);
+    const auto [nearShare, covered] = overlap(ro, lip, rings, 0);
+    CHECK(nearShare >= 0.9);
+    CHECK(covered >= 0.8);
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
