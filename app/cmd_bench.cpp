@@ -48,6 +48,9 @@ const std::vector<Benchmark>& benchmarks()
         { "synth", "250 synthetic identities at each resolution, 250 ICT identities, 10 identities with their 36 poses", benchSynth },
         { "stats", "statistics core at 6,000 vertices: conditional inference, reconstruction, one mixture fit", benchStatsCore },
         { "train", "face model on the synthetic low, high and ultra sets: training time, file size, reconstruction latency", benchTrain },
+        { "sketch",
+            "one ~60-point stroke from the session file to the updated face on the synthetic low, high and ultra sets, with its parts",
+            benchSketch },
     };
     return all;
 }

@@ -99,6 +99,7 @@ void addEvalCommand(CLI::App& root)
     eval->require_subcommand(1);
     addObserveCommand(*eval);
     addEvalContoursCommand(*eval);
+    addEvalStrokesCommand(*eval);
 }
 
 } // namespace facesketch::app

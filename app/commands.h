@@ -19,9 +19,13 @@ void addSynthCommand(CLI::App& root);
 void addImportCommand(CLI::App& root);
 void addTrainCommand(CLI::App& root);
 void addEvalCommand(CLI::App& root);
+void addSketchCommand(CLI::App& root);
+void addStrokesCommand(CLI::App& root);
 
 /// `facesketch eval contours`, a subcommand of `eval` (cmd_eval.cpp creates `eval`).
 void addEvalContoursCommand(CLI::App& eval);
+/// `facesketch eval strokes` (cmd_eval_strokes.cpp).
+void addEvalStrokesCommand(CLI::App& eval);
 
 /// What `facesketch contours` draws (also used by `facesketch demo`).
 struct ContourPictureOptions {

@@ -20,6 +20,8 @@ int main(int argc, char** argv)
     app::addImportCommand(root);
     app::addTrainCommand(root);
     app::addEvalCommand(root);
+    app::addSketchCommand(root);
+    app::addStrokesCommand(root);
 
     try {
         root.parse(argc, argv);

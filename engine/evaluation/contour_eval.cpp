@@ -4,12 +4,13 @@
 #include "contours/curvature.h"
 #include "contours/curvature_gpu.h"
 #include "core/error.h"
+#include "geometry/grid_index.h"
 #include "geometry/mesh_batch.h"
+#include "sketch/mappers.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 
 namespace facesketch::evaluation {
 
@@ -26,56 +27,6 @@ const char* mappingName(ContourMapping mapping)
 }
 
 namespace {
-
-// Nearest candidate in screen space through a uniform grid of `cell`-pixel buckets.
-class ScreenIndex {
-public:
-    ScreenIndex(const std::vector<Candidate>& cloud, int width, int height, int cell = 8)
-        : cloud_(cloud)
-        , cell_(cell)
-        , columns_(width / cell + 1)
-        , rows_(height / cell + 1)
-        , buckets_(static_cast<size_t>(columns_) * rows_)
-    {
-        for (size_t i = 0; i < cloud.size(); ++i)
-            buckets_[bucket(cloud[i].screen[0], cloud[i].screen[1])].push_back(static_cast<int>(i));
-    }
-
-    /// Index into the cloud of the candidate nearest (qx, qy), or -1 for an empty cloud.
-    int nearest(double qx, double qy) const
-    {
-        const int cx = column(qx), cy = row(qy);
-        int best = -1;
-        double bestD2 = std::numeric_limits<double>::infinity();
-        for (int ring = 0; ring <= std::max(columns_, rows_); ++ring) {
-            // Everything in this ring or beyond is at least (ring - 1) cells away.
-            if (best >= 0 && static_cast<double>(ring - 1) * cell_ > std::sqrt(bestD2))
-                break;
-            for (int y = cy - ring; y <= cy + ring; ++y)
-                for (int x = cx - ring; x <= cx + ring; ++x) {
-                    if (std::max(std::abs(x - cx), std::abs(y - cy)) != ring || x < 0 || y < 0 || x >= columns_ || y >= rows_)
-                        continue;
-                    for (int i : buckets_[static_cast<size_t>(y) * columns_ + x]) {
-                        const double dx = cloud_[i].screen[0] - qx, dy = cloud_[i].screen[1] - qy;
-                        if (dx * dx + dy * dy < bestD2) {
-                            bestD2 = dx * dx + dy * dy;
-                            best = i;
-                        }
-                    }
-                }
-        }
-        return best;
-    }
-
-private:
-    int column(double x) const { return std::clamp(static_cast<int>(std::floor(x / cell_)), 0, columns_ - 1); }
-    int row(double y) const { return std::clamp(static_cast<int>(std::floor(y / cell_)), 0, rows_ - 1); }
-    size_t bucket(double x, double y) const { return static_cast<size_t>(row(y)) * columns_ + column(x); }
-
-    const std::vector<Candidate>& cloud_;
-    int cell_, columns_, rows_;
-    std::vector<std::vector<int>> buckets_;
-};
 
 Eigen::VectorXd flatten(const Mesh& mesh)
 {
@@ -158,14 +109,12 @@ std::vector<ContourEvalResult> evaluateContours(gpu::Device& device, const Conto
     for (const auto& [viewName, angles] : options.views) {
         const Camera camera = frameMesh(mean, angles, options.imageSize, options.imageSize);
         const std::vector<Candidate> cloud = cloudBuilder.build(camera, params);
-        const ScreenIndex index(cloud, options.imageSize, options.imageSize);
+        const GridIndex index(sketch::screenPositions(cloud), 8.0);
         // Rows of the view's rotation: a point's 2D position in the view plane, in mm.
         Eigen::Matrix<double, 2, 3> P;
-        Eigen::Vector3d depthAxis;
         for (int c = 0; c < 3; ++c) {
             P(0, c) = camera.view[c][0];
             P(1, c) = camera.view[c][1];
-            depthAxis[c] = camera.view[c][2];
         }
 
         for (size_t f = 0; f < data.testFaces.size(); ++f) {
@@ -177,41 +126,33 @@ std::vector<ContourEvalResult> evaluateContours(gpu::Device& device, const Conto
             for (ContourMapping mapping : { ContourMapping::KnownVertex, ContourMapping::NearestCandidate, ContourMapping::Projected2D }) {
                 // `own`: candidates of the current reconstruction (empty at first).
                 auto rebuild = [&](const std::vector<Candidate>& own) {
-                    const ScreenIndex ownIndex(own, options.imageSize, options.imageSize);
-                    // Points per observed vertex, averaged.
-                    std::map<Eigen::Index, std::pair<Eigen::Vector3d, int>> observed;
+                    // The nearest mapper's rule (sketch/mappers.h): each point to the nearest of
+                    // the reconstruction's own candidates or the cloud's (own wins a tie), moved
+                    // onto the point in the view plane with the candidate's depth (a point's own
+                    // depth would pin a wrong vertex's depth); points per vertex averaged.
+                    const GridIndex ownIndex(sketch::screenPositions(own), 8.0);
+                    const std::vector<sketch::IndexedCandidates> lists = { { &own, &ownIndex }, { &cloud, &index } };
+                    std::vector<sketch::VertexObservation> matches;
                     for (const Candidate& p : points) {
-                        Eigen::Index vertex = p.vertex;
-                        Eigen::Vector3d xyz(p.world[0], p.world[1], p.world[2]);
+                        sketch::VertexObservation o;
+                        o.vertex = p.vertex;
+                        o.position = Eigen::Vector3d(p.world[0], p.world[1], p.world[2]);
                         if (mapping != ContourMapping::KnownVertex) {
-                            auto distance2 = [&](const Candidate& c) {
-                                return std::pow(c.screen[0] - p.screen[0], 2) + std::pow(c.screen[1] - p.screen[1], 2);
-                            };
-                            const int fromCloud = index.nearest(p.screen[0], p.screen[1]);
-                            const int fromOwn = ownIndex.nearest(p.screen[0], p.screen[1]);
-                            const Candidate* match = nullptr;
-                            if (fromOwn >= 0 && (fromCloud < 0 || distance2(own[fromOwn]) <= distance2(cloud[fromCloud])))
-                                match = &own[fromOwn];
-                            else if (fromCloud >= 0)
-                                match = &cloud[fromCloud];
-                            else
+                            const Eigen::Vector2d at(p.screen[0], p.screen[1]);
+                            const auto [list, i] = sketch::nearestCandidate(lists, at);
+                            if (list < 0)
                                 continue;
-                            vertex = match->vertex;
-                            // The stroke fixes the point in the view plane; its depth is the
-                            // candidate's (a point's own depth would pin a wrong vertex's depth).
-                            const Eigen::Vector3d c(match->world[0], match->world[1], match->world[2]);
-                            xyz = P.transpose() * (P * xyz) + depthAxis * depthAxis.dot(c);
+                            const Candidate& match = (*lists[static_cast<std::size_t>(list)].candidates)[static_cast<std::size_t>(i)];
+                            o.vertex = match.vertex;
+                            o.position = sketch::adaptToStroke(camera, at, o.position, match);
                         }
-                        // Eigen vectors do not zero themselves: start each sum explicitly.
-                        auto [slot, inserted] = observed.try_emplace(vertex, Eigen::Vector3d::Zero(), 0);
-                        slot->second.first += xyz;
-                        slot->second.second += 1;
+                        matches.push_back(o);
                     }
                     // Solve, then drop the observations the face disagrees with most (a point
                     // mapped to the wrong vertex) and solve again: `trim` times.
                     std::vector<std::pair<Eigen::Index, Eigen::Vector3d>> kept;
-                    for (const auto& [vertex, sum] : observed)
-                        kept.push_back({ vertex, sum.first / sum.second });
+                    for (const sketch::VertexObservation& o : sketch::averagePerVertex(matches))
+                        kept.push_back({ static_cast<Eigen::Index>(o.vertex), o.position });
                     auto solve = [&] {
                         stats::Observations obs;
                         for (const auto& [vertex, xyz] : kept) {

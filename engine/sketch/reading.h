@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace facesketch::sketch {
@@ -31,6 +32,10 @@ struct StrokeReading {
     std::vector<int> chosen;
     /// The x and y rows of the view's rotation (for viewPlaneOnly observations).
     Eigen::Matrix<double, 2, 3> viewPlane = Eigen::Matrix<double, 2, 3>::Zero();
+    /// Why the reading pins fewer vertices than it has points, when that is worth telling the
+    /// user (no candidates under the stroke, the stroke off screen or off the face); empty
+    /// otherwise.
+    std::string message;
 };
 
 } // namespace facesketch::sketch

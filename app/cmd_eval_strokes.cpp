@@ -1,0 +1,172 @@
+// `facesketch eval strokes`: every held-out face sketched with its own simulated strokes onto
+// the mean face, from each view and from all views together, with each mapper
+// (evaluation/stroke_eval.h); a table, a JSON file of the records and optional error renders.
+
+#include "commands.h"
+#include "sketch_data.h"
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/stopwatch.h"
+#include "evaluation/stroke_eval.h"
+#include "render/colormap.h"
+#include "render/renderer.h"
+#include "stats/model_file.h"
+
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+namespace facesketch::app {
+
+namespace {
+
+struct EvalStrokesCommand {
+    std::string model, dataset, json, output, views = "front,profile,34", mappers = "nearest,heuristic,hmm,simple";
+    double noise = 1.0, extreme = 1.0, errorScale = 10.0;
+    int size = 1024, renders = 2, maxFaces = 0;
+    std::uint64_t seed = 1;
+    bool noCorrelation = false, quiet = false, noProject = false;
+    double supersedeRadius = sketch::TrackingOptions {}.supersedeRadius;
+};
+
+std::vector<sketch::MapperKind> parseMappers(const std::string& text)
+{
+    std::vector<sketch::MapperKind> out;
+    std::stringstream in(text);
+    for (std::string name; std::getline(in, name, ',');)
+        if (!name.empty())
+            out.push_back(sketch::parseMapper(name));
+    if (out.empty())
+        fail("--mappers: no mapper given");
+    return out;
+}
+
+void printRecords(const std::vector<evaluation::StrokeEvalRecord>& records)
+{
+    std::cout << std::fixed << std::left << std::setw(9) << "view" << std::setw(11) << "mapper" << std::right << std::setw(7) << "faces"
+              << std::setw(9) << "strokes" << std::setw(8) << "unread" << std::setw(10) << "observed" << std::setw(10) << "mean mm"
+              << std::setw(14) << "mean face mm" << std::setw(8) << "ratio" << std::setw(10) << "read ms" << std::setw(10) << "apply ms"
+              << "\n";
+    for (const auto& r : records)
+        std::cout << std::left << std::setw(9) << r.view << std::setw(11) << r.mapper << std::right << std::setw(7) << r.faces
+                  << std::setw(9) << r.strokes << std::setw(8) << r.unread + r.failed << std::setw(10) << std::setprecision(0)
+                  << r.observedVertices << std::setprecision(2) << std::setw(10) << r.meanMm << std::setw(14) << r.meanFaceMm
+                  << std::setprecision(3) << std::setw(8) << r.ratio << std::setprecision(1) << std::setw(10) << r.readMs << std::setw(10)
+                  << r.applyMs << "\n";
+}
+
+void runEvalStrokes(const EvalStrokesCommand& c)
+{
+    Stopwatch clock;
+    const stats::FaceModel m = stats::loadFaceModel(c.model);
+    SketchData d = loadSketchData(c.dataset, &m);
+    if (d.testFaces.empty())
+        fail(c.dataset, ": no `test` samples to evaluate on");
+    if (c.maxFaces > 0 && static_cast<int>(d.testFaces.size()) > c.maxFaces) {
+        d.testFaces.resize(static_cast<size_t>(c.maxFaces));
+        d.testNames.resize(static_cast<size_t>(c.maxFaces));
+    }
+
+    evaluation::StrokeEvalData data;
+    data.model = &m;
+    data.flags = d.flags;
+    data.candidateFaces = std::move(d.candidateFaces);
+    data.contours = d.contours;
+    data.testNames = d.testNames;
+    data.testFaces = d.testFaces;
+
+    evaluation::StrokeEvalOptions o;
+    o.views = parseViewList(c.views);
+    o.mappers = parseMappers(c.mappers);
+    o.simulate.noisePx = c.noise;
+    o.simulate.extreme = c.extreme;
+    o.simulate.imageSize = c.size;
+    o.simulate.seed = c.seed;
+    o.correlation = !c.noCorrelation;
+    o.tracking.supersedeRadius = c.supersedeRadius;
+    o.tracking.projectOntoFaceSpace = !c.noProject;
+    o.keepFaces = c.output.empty() ? 0 : c.renders;
+    if (!c.quiet)
+        o.progress = [](const std::string& line) { std::cout << "# " << line << std::endl; };
+
+    gpu::ScopedDevice device;
+    const evaluation::StrokeEvalResult result = evaluation::evaluateStrokes(*device, data, o);
+    std::cout << "# " << data.testFaces.size() << " test faces of " << c.dataset << ", cloud of " << data.candidateFaces.size()
+              << " faces, " << m.vertexCount() << " skin vertices, noise " << c.noise << " px, extreme " << c.extreme << ", "
+              << clock.seconds() << " s\n";
+    printRecords(result.records);
+    for (const std::string& note : result.notes)
+        std::cout << "# refused: " << note << "\n";
+
+    if (!c.json.empty()) {
+        nlohmann::json records = nlohmann::json::array();
+        for (const auto& r : result.records)
+            records.push_back({ { "view", r.view }, { "mapper", r.mapper }, { "noise_px", r.noisePx }, { "faces", r.faces },
+                { "mean_mm", r.meanMm }, { "ratio", r.ratio }, { "extreme", r.extreme }, { "mean_face_mm", r.meanFaceMm },
+                { "strokes", r.strokes }, { "unread", r.unread }, { "failed", r.failed }, { "observed_vertices", r.observedVertices },
+                { "read_ms", r.readMs }, { "apply_ms", r.applyMs } });
+        const nlohmann::json doc { { "model", c.model }, { "dataset", c.dataset }, { "vertices", m.vertexCount() },
+            { "image_size", c.size }, { "seed", c.seed }, { "correlation", !c.noCorrelation }, { "supersede_radius_mm", c.supersedeRadius },
+            { "project_onto_face_space", !c.noProject }, { "results", records } };
+        writeFileAtomically(c.json, [&](std::ostream& out) { out << doc.dump(1) << "\n"; });
+        std::cout << "wrote " << c.json << "\n";
+    }
+
+    if (!c.output.empty()) {
+        std::filesystem::create_directories(c.output);
+        Renderer renderer(*device, 512, 512, 4);
+        for (const auto& k : result.kept) {
+            std::vector<glm::vec4> colours;
+            for (Eigen::Index v = 0; v < k.vertexError.size(); ++v)
+                colours.push_back(blueToRed(k.vertexError[v] / c.errorScale));
+            renderer.clear();
+            renderer.addMesh(k.reconstruction, MeshStyle {}, colours);
+            const std::string view = k.view == "all" ? "34" : k.view;
+            writePng(std::filesystem::path(c.output) / (k.face + "-" + k.view + "-" + k.mapper + ".png"),
+                renderer.render(frameMesh(k.reconstruction, parseView(view), 512, 512)));
+        }
+        std::cout << "wrote " << result.kept.size() << " error renders to " << c.output << " (blue 0 mm to red " << c.errorScale
+                  << " mm)\n";
+    }
+}
+
+} // namespace
+
+void addEvalStrokesCommand(CLI::App& eval)
+{
+    auto c = std::make_shared<EvalStrokesCommand>();
+    auto* cmd = eval.add_subcommand("strokes", "Sketch held-out faces with their own simulated strokes; errors in mm per view and mapper");
+    cmd->footer("For every `test` face of DATASET: simulated strokes of its own contours and silhouette (as `facesketch strokes\n"
+                "simulate`) are read by each mapper and applied to the tracking model from the mean face, from each view\n"
+                "alone and from all views together (view \"all\"). Prints the mean per-vertex error in mm and its ratio to\n"
+                "the mean face's error; --json writes one record per (view, mapper): {\"view\", \"mapper\", \"noise_px\", \"faces\",\n"
+                "\"mean_mm\", \"ratio\", ...} under \"results\".");
+    cmd->add_option("model", c->model, "Model file from `facesketch train`")->required();
+    cmd->add_option("dataset", c->dataset, "The dataset it was trained on (its test faces are sketched)")->required();
+    cmd->add_option("--views", c->views, "Views separated by ',' or ';': front, profile, 34 or AZ,EL")->capture_default_str();
+    cmd->add_option("--mappers", c->mappers, "Mappers separated by ','")->capture_default_str();
+    cmd->add_option("--noise", c->noise, "Jitter of the simulated strokes, pixels (standard deviation)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 100.0));
+    cmd->add_option("--extreme", c->extreme, "Exaggerate the traced faces away from the mean face by this factor")
+        ->capture_default_str()
+        ->check(CLI::Range(-10.0, 10.0));
+    cmd->add_option("--size", c->size, "Viewport size of the strokes, pixels")->capture_default_str()->check(CLI::Range(64, 8192));
+    cmd->add_option("--seed", c->seed, "Seed of the simulated strokes")->capture_default_str();
+    cmd->add_option("--max-faces", c->maxFaces, "Sketch only the first N test faces (0: all)")->check(CLI::Range(0, 100000));
+    cmd->add_flag("--no-correlation", c->noCorrelation, "Unmeasured segments keep the mean face");
+    cmd->add_option("--supersede-radius", c->supersedeRadius, "Tracking: older constraints this near a new stroke's line are replaced, mm")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1000.0));
+    cmd->add_flag("--no-project", c->noProject, "Tracking: keep the strokes' own positions instead of projecting them onto the face space");
+    cmd->add_option("--json", c->json, "Write the records to this JSON file");
+    cmd->add_option("-o,--output", c->output, "Folder for colour-coded error renders (blue to red)");
+    cmd->add_option("--renders", c->renders, "Test faces to render")->capture_default_str();
+    cmd->add_option("--error-scale", c->errorScale, "Error in mm drawn red")->capture_default_str();
+    cmd->add_flag("-q,--quiet", c->quiet, "No progress lines");
+    cmd->callback([c] { runEvalStrokes(*c); });
+}
+
+} // namespace facesketch::app

@@ -1,0 +1,166 @@
+// `facesketch sketch`: replays a session file headless (docs/session-format.md): every stroke is
+// read (sketch/mapper.h) and applied to the tracking model (sketch/tracking.h); prints per stroke
+// the points, candidates, mapped vertices and milliseconds, writes the face and optionally a
+// picture of it with the last view's strokes, their interpreted strokes and mapped vertices.
+
+#include "commands.h"
+#include "sketch_data.h"
+
+#include "core/error.h"
+#include "core/stopwatch.h"
+#include "io/mesh_io.h"
+#include "io/png.h"
+#include "render/renderer.h"
+#include "sketch/feedback.h"
+#include "sketch/mapper.h"
+#include "sketch/session.h"
+#include "sketch/symmetry.h"
+#include "sketch/tracking.h"
+#include "stats/model_file.h"
+
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <numeric>
+
+namespace facesketch::app {
+
+namespace {
+
+struct SketchCommand {
+    std::string model, dataset, session, output, render, mapper;
+    int similar = 3;
+};
+
+void runSketch(const SketchCommand& c)
+{
+    const sketch::Session session = sketch::loadSession(c.session);
+    (void)sketch::sessionInputs(session, c.session); // the session's model and dataset must exist
+    // -1: each stroke's own mapper (GCC warns about reading an optional here).
+    const int override = c.mapper.empty() ? -1 : static_cast<int>(sketch::parseMapper(c.mapper));
+    const stats::FaceModel m = stats::loadFaceModel(c.model);
+    const SketchData d = loadSketchData(c.dataset, &m);
+
+    std::unique_ptr<sketch::MirrorMap> mirror;
+    for (const sketch::StrokeAction& a : session.actions)
+        if (a.reading.symmetry && !mirror) {
+            mirror = std::make_unique<sketch::MirrorMap>(sketch::MirrorMap::find(meanMesh(m), d.landmarks, c.model + " mean face"));
+            const sketch::MirrorCheck& k = mirror->check();
+            std::cout << "# mirror map: plane x = " << k.planeX << " mm, worst pair " << k.maxDistance << " mm (mean edge " << k.meanEdge
+                      << " mm), " << k.labelledPairs << " labelled pairs\n";
+        }
+
+    gpu::ScopedDevice device;
+    sketch::StrokeReader reader(*device, m, d.candidateFaces, d.flags);
+    sketch::TrackingModel tracking(m);
+    std::cout << "# " << session.actions.size() << " strokes, " << m.vertexCount() << " vertices, cloud of " << d.candidateFaces.size()
+              << " faces\n";
+    std::cout << std::fixed << std::setprecision(1);
+    struct Drawn {
+        sketch::StrokeReading reading;
+        OrbitView view;
+    };
+    std::vector<Drawn> drawn;
+    int refused = 0;
+    for (size_t i = 0; i < session.actions.size(); ++i) {
+        const sketch::StrokeAction& a = session.actions[i];
+        const sketch::MapperKind kind = override >= 0 ? static_cast<sketch::MapperKind>(override) : sketch::parseMapper(a.reading.mapper);
+        std::cout << "stroke " << i << ": " << a.stroke.points.size() << " points, " << sketch::mapperName(kind);
+        Stopwatch clock;
+        sketch::StrokeReading reading;
+        try {
+            reading = reader.read(a.stroke, tracking.faceMesh(), kind);
+        } catch (const Error& e) {
+            // The face and tracking model are as they were; the replay goes on.
+            std::cout << ": refused: " << e.what() << "\n";
+            ++refused;
+            continue;
+        }
+        const double readMs = clock.milliseconds();
+        const sketch::StrokeReader::Timing t = reader.lastTiming();
+        const int candidates = std::accumulate(reading.candidateCounts.begin(), reading.candidateCounts.end(), 0);
+        std::cout << ", " << reading.screenPoints.size() << " densified, " << candidates << " candidates, " << reading.observations.size()
+                  << " vertices mapped, read " << readMs << " ms (candidates " << t.candidatesMs << ", mapping " << t.mappingMs << ")";
+        if (reading.observations.empty()) {
+            std::cout << ", pins nothing" << (reading.message.empty() ? "" : ": " + reading.message) << "\n";
+            continue;
+        }
+        clock.restart();
+        sketch::ApplyOptions apply;
+        apply.correlation = a.reading.correlation;
+        apply.mirror = a.reading.symmetry ? mirror.get() : nullptr;
+        tracking.apply(reading, apply);
+        std::cout << ", rebuild " << clock.milliseconds() << " ms, " << tracking.observedVertices() << " vertices observed\n";
+        drawn.push_back({ std::move(reading), a.stroke.view });
+    }
+    const Mesh face = tracking.faceMesh();
+    writeMesh(c.output, face);
+    std::cout << "wrote " << c.output << " (" << tracking.strokes() << " strokes applied, " << refused << " refused)\n";
+
+    if (c.similar > 0 && !d.trainNames.empty()) {
+        const std::vector<Mesh> train(d.candidateFaces.begin(), d.candidateFaces.begin() + static_cast<long>(d.trainNames.size()));
+        std::cout << "most similar training faces:";
+        for (const auto& [index, mm] : sketch::mostSimilarFaces(face, train, c.similar))
+            std::cout << " " << d.trainNames[static_cast<size_t>(index)] << " (" << std::setprecision(2) << mm << " mm)";
+        std::cout << "\n";
+    }
+
+    if (!c.render.empty()) {
+        // The last stroke's view, with every stroke drawn in that view: as drawn (red), as
+        // understood (the interpreted stroke, blue) and the mapped vertices (green).
+        const OrbitView view = drawn.empty() ? frameMeshView(face, { 0, 0 }, 800, 800) : drawn.back().view;
+        const Camera camera = orbitCamera(view);
+        Renderer renderer(*device, view.width, view.height, 4);
+        renderer.addMesh(face);
+        std::vector<glm::vec3> stroke, interpreted, mapped;
+        for (const Drawn& s : drawn) {
+            if (!sketch::operator==(s.view, view))
+                continue;
+            // Lines are drawn slightly towards the camera so the surface does not hide them.
+            auto lift = [&](const Eigen::Vector3d& x) {
+                const glm::dvec3 p(x.x(), x.y(), x.z());
+                return glm::vec3(p + 1.0 * camera.toCamera(p));
+            };
+            for (size_t k = 1; k < s.reading.worldPoints.size(); ++k) {
+                stroke.push_back(lift(s.reading.worldPoints[k - 1]));
+                stroke.push_back(lift(s.reading.worldPoints[k]));
+            }
+            const sketch::InterpretedStroke is = sketch::interpretStroke(s.reading, face, camera);
+            for (size_t k = 0; k < is.world.size(); ++k) {
+                mapped.push_back(lift(is.world[k]));
+                if (k > 0) {
+                    interpreted.push_back(lift(is.world[k - 1]));
+                    interpreted.push_back(lift(is.world[k]));
+                }
+            }
+        }
+        renderer.addLines(stroke, std::vector<glm::vec4>(stroke.size(), { 0.85f, 0.1f, 0.1f, 1 }));
+        renderer.addLines(interpreted, std::vector<glm::vec4>(interpreted.size(), { 0.1f, 0.2f, 0.9f, 1 }));
+        renderer.addPoints(mapped, std::vector<glm::vec4>(mapped.size(), { 0.1f, 0.7f, 0.2f, 1 }), 4.0f);
+        writePng(c.render, renderer.render(camera));
+        std::cout << "wrote " << c.render << "\n";
+    }
+}
+
+} // namespace
+
+void addSketchCommand(CLI::App& root)
+{
+    auto c = std::make_shared<SketchCommand>();
+    auto* cmd = root.add_subcommand("sketch", "Replay a session file of strokes headless into a face");
+    cmd->footer("Reads every stroke of the session (docs/session-format.md) against the current face, applies it to the\n"
+                "tracking model and prints, per stroke: points, densified points, candidates, mapped vertices and\n"
+                "milliseconds. A stroke that cannot be read is reported and leaves the face as it was.");
+    cmd->add_option("model", c->model, "Model file from `facesketch train`")->required();
+    cmd->add_option("dataset", c->dataset, "The dataset it was trained on (its train and contour faces form the candidate cloud)")
+        ->required();
+    cmd->add_option("--session", c->session, "Session file to replay")->required();
+    cmd->add_option("-o,--output", c->output, "The face to write (.ply or .obj)")->required();
+    cmd->add_option("--render", c->render, "Also a PNG of the face in the last stroke's view with its strokes");
+    cmd->add_option("--mapper", c->mapper, "Read every stroke with this mapper instead of the session's")
+        ->check(CLI::IsMember({ "nearest", "heuristic", "hmm", "simple" }));
+    cmd->add_option("--similar", c->similar, "Print the k most similar training faces")->capture_default_str()->check(CLI::Range(0, 1000));
+    cmd->callback([c] { runSketch(*c); });
+}
+
+} // namespace facesketch::app

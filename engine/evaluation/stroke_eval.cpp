@@ -1,0 +1,156 @@
+#include "evaluation/stroke_eval.h"
+
+#include "core/error.h"
+#include "core/stopwatch.h"
+
+#include <cmath>
+
+namespace facesketch::evaluation {
+
+namespace {
+
+Mesh meshOf(const Eigen::VectorXd& flat, const Triangles& F)
+{
+    Mesh m;
+    m.F = F;
+    m.V.resize(flat.size() / 3, 3);
+    for (Eigen::Index v = 0; v < m.V.rows(); ++v)
+        m.V.row(v) = flat.segment<3>(3 * v).transpose();
+    return m;
+}
+
+Eigen::VectorXd vertexErrors(const Eigen::VectorXd& face, const Mesh& truth)
+{
+    Eigen::VectorXd e(truth.V.rows());
+    for (Eigen::Index v = 0; v < truth.V.rows(); ++v)
+        e[v] = (face.segment<3>(3 * v) - truth.V.row(v).transpose()).norm();
+    return e;
+}
+
+struct Sums {
+    double mean = 0, meanFace = 0, observed = 0, readMs = 0, applyMs = 0;
+    int faces = 0, strokes = 0, unread = 0, failed = 0;
+};
+
+} // namespace
+
+StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data, const StrokeEvalOptions& options)
+{
+    if (!data.model)
+        fail("evaluateStrokes: no model");
+    const stats::FaceModel& model = *data.model;
+    const Eigen::Index nv = model.vertexCount();
+    if (data.testFaces.empty() || data.testNames.size() != data.testFaces.size())
+        fail("evaluateStrokes: need named test faces");
+    if (options.mappers.empty() || options.views.empty())
+        fail("evaluateStrokes: need at least one view and one mapper");
+    for (size_t i = 0; i < data.testFaces.size(); ++i)
+        if (data.testFaces[i].V.rows() != nv || data.testFaces[i].F != model.triangles)
+            fail("evaluateStrokes: test face ", data.testNames[i], " is not on the model's topology (", data.testFaces[i].V.rows(),
+                " vertices, the model ", nv, ")");
+
+    const Mesh mean = meshOf(model.meanFace, model.triangles);
+    sketch::StrokeReader reader(device, model, data.candidateFaces, data.flags);
+
+    // Per view name (then "all"), per mapper.
+    std::vector<std::string> viewNames;
+    for (const auto& [name, angles] : options.views)
+        viewNames.push_back(name);
+    if (options.allViews && options.views.size() > 1)
+        viewNames.push_back("all");
+    std::map<std::pair<std::string, int>, Sums> sums;
+    StrokeEvalResult result;
+
+    for (size_t f = 0; f < data.testFaces.size(); ++f) {
+        // The strokes of every view, simulated once per face and shared by the mappers.
+        std::vector<std::vector<sketch::SimulatedStroke>> strokes;
+        Mesh traced;
+        for (const auto& [name, angles] : options.views) {
+            sketch::SimulateOptions so = options.simulate;
+            so.angles = angles;
+            so.seed = options.simulate.seed + 7919 * f;
+            sketch::Simulation sim = sketch::simulateStrokes(data.testFaces[f], mean, data.contours, data.flags, so);
+            strokes.push_back(std::move(sim.strokes));
+            traced = std::move(sim.traced);
+        }
+        const double meanFaceError = vertexErrors(model.meanFace, traced).mean();
+
+        for (const std::string& view : viewNames) {
+            std::vector<const sketch::SimulatedStroke*> sequence;
+            for (size_t k = 0; k < options.views.size(); ++k)
+                if (view == "all" || view == options.views[k].first)
+                    for (const auto& s : strokes[k])
+                        sequence.push_back(&s);
+            for (size_t m = 0; m < options.mappers.size(); ++m) {
+                const sketch::MapperKind kind = options.mappers[m];
+                sketch::TrackingModel tracking(model, options.tracking);
+                Sums& s = sums[{ view, static_cast<int>(m) }];
+                sketch::ApplyOptions apply;
+                apply.correlation = options.correlation;
+                for (const sketch::SimulatedStroke* stroke : sequence) {
+                    ++s.strokes;
+                    Stopwatch clock;
+                    sketch::StrokeReading reading;
+                    try {
+                        reading = reader.read(stroke->stroke, tracking.faceMesh(), kind, options.params);
+                    } catch (const Error& e) {
+                        // A simulated stroke the reader refuses is a finding, not a reason to
+                        // stop: counted and its first message kept.
+                        if (s.failed++ == 0)
+                            result.notes.push_back(
+                                cat(view, " ", sketch::mapperName(kind), " ", data.testNames[f], " ", stroke->feature, ": ", e.what()));
+                        continue;
+                    }
+                    s.readMs += clock.milliseconds();
+                    if (reading.observations.empty()) {
+                        ++s.unread;
+                        continue;
+                    }
+                    clock.restart();
+                    tracking.apply(reading, apply);
+                    s.applyMs += clock.milliseconds();
+                }
+                const Eigen::VectorXd e = vertexErrors(tracking.face(), traced);
+                s.mean += e.mean();
+                s.meanFace += meanFaceError;
+                s.observed += tracking.observedVertices();
+                ++s.faces;
+                if (static_cast<int>(f) < options.keepFaces)
+                    result.kept.push_back({ data.testNames[f], view, sketch::mapperName(kind), e.mean(), e, tracking.faceMesh() });
+            }
+            if (options.progress) {
+                std::string line = cat(data.testNames[f], " ", view, ":");
+                for (size_t m = 0; m < options.mappers.size(); ++m) {
+                    const Sums& s = sums[{ view, static_cast<int>(m) }];
+                    line += cat(" ", sketch::mapperName(options.mappers[m]), " ", s.mean / s.faces, " mm");
+                }
+                options.progress(cat(line, " (mean face ", meanFaceError, " mm, ", sequence.size(), " strokes)"));
+            }
+        }
+    }
+
+    for (const std::string& view : viewNames)
+        for (size_t m = 0; m < options.mappers.size(); ++m) {
+            const Sums& s = sums[{ view, static_cast<int>(m) }];
+            StrokeEvalRecord r;
+            r.view = view;
+            r.mapper = sketch::mapperName(options.mappers[m]);
+            r.noisePx = options.simulate.noisePx;
+            r.extreme = options.simulate.extreme;
+            r.faces = s.faces;
+            r.meanMm = s.mean / s.faces;
+            r.meanFaceMm = s.meanFace / s.faces;
+            r.ratio = r.meanMm / r.meanFaceMm;
+            r.strokes = s.strokes;
+            r.unread = s.unread;
+            r.failed = s.failed;
+            r.observedVertices = s.observed / s.faces;
+            const int read = s.strokes - s.failed;
+            r.readMs = read > 0 ? s.readMs / read : 0;
+            r.applyMs = read - s.unread > 0 ? s.applyMs / (read - s.unread) : 0;
+            result.records.push_back(r);
+        }
+    return result;
+}
+
+} // namespace facesketch::evaluation

@@ -1,0 +1,82 @@
+#pragma once
+// How well strokes are read (issue 12): every held-out face is sketched with its own simulated
+// strokes (sketch/simulate.h) onto the mean face, from each view alone and from all views
+// together, with each mapper (sketch/mapper.h) and the tracking model (sketch/tracking.h), and
+// the result is compared with the face the strokes trace: mean per-vertex Euclidean error in mm,
+// and its ratio to the mean face's error. Strokes are applied in the order drawn; with all views
+// together, the views follow one another in the order given (front, profile, 34 by default).
+//
+// With `extreme` F != 1 the strokes trace mean + F (face - mean) and that caricature is the
+// face scored against (it is what the strokes depict; the mean face's error grows with it).
+
+#include "gpu/device.h"
+#include "sketch/mapper.h"
+#include "sketch/simulate.h"
+#include "sketch/tracking.h"
+#include "stats/face_model.h"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace facesketch::evaluation {
+
+/// Everything on the model's topology (vertex v of the model is vertex v of every mesh here).
+struct StrokeEvalData {
+    const stats::FaceModel* model = nullptr;
+    std::vector<std::uint32_t> flags;                 ///< VertexFlag per model vertex
+    std::vector<Mesh> candidateFaces;                 ///< the faces whose contours form the cloud
+    std::map<std::string, std::vector<int>> contours; ///< labelled contours, model numbering
+    std::vector<std::string> testNames;
+    std::vector<Mesh> testFaces; ///< held-out faces, sketched and scored
+};
+
+struct StrokeEvalOptions {
+    std::vector<std::pair<std::string, ViewAngles>> views = { { "front", { 0, 0 } }, { "profile", { 90, 0 } }, { "34", { 45, 0 } } };
+    bool allViews = true; ///< also every view's strokes together (view "all")
+    std::vector<sketch::MapperKind> mappers
+        = { sketch::MapperKind::Nearest, sketch::MapperKind::Heuristic, sketch::MapperKind::Hmm, sketch::MapperKind::Simple };
+    sketch::MapperParams params;
+    sketch::SimulateOptions simulate; ///< angles ignored (from `views`); seed + face index per face
+    sketch::TrackingOptions tracking;
+    bool correlation = true;
+    /// Keep per-vertex errors and reconstructions of the first this many test faces (renders).
+    int keepFaces = 0;
+    /// Called after each (face, view) with a line of progress; may be empty.
+    std::function<void(const std::string&)> progress;
+};
+
+/// One (view, mapper) over every test face.
+struct StrokeEvalRecord {
+    std::string view, mapper;
+    double noisePx = 0, extreme = 1;
+    int faces = 0;
+    double meanMm = 0;              ///< mean over faces of the mean per-vertex error
+    double meanFaceMm = 0;          ///< the same for the mean face
+    double ratio = 0;               ///< meanMm / meanFaceMm
+    int strokes = 0;                ///< strokes drawn, over all faces
+    int unread = 0;                 ///< strokes the reader pinned nothing with (or refused, counted in failed)
+    int failed = 0;                 ///< strokes the reader threw on
+    double observedVertices = 0;    ///< mean per face at the end
+    double readMs = 0, applyMs = 0; ///< mean per stroke
+};
+
+/// A kept face's result (StrokeEvalOptions::keepFaces).
+struct StrokeEvalFace {
+    std::string face, view, mapper;
+    double meanMm = 0;
+    Eigen::VectorXd vertexError; ///< #V, mm
+    Mesh reconstruction;
+};
+
+struct StrokeEvalResult {
+    std::vector<StrokeEvalRecord> records; ///< per view (then "all"), per mapper in the order given
+    std::vector<StrokeEvalFace> kept;
+    std::vector<std::string> notes; ///< e.g. the first message of each failed stroke
+};
+
+/// Runs the measurement (GPU candidate clouds through sketch::StrokeReader). Throws Error for
+/// data of another topology than the model's, no test faces or no mappers.
+StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data, const StrokeEvalOptions& options);
+
+} // namespace facesketch::evaluation

@@ -1,0 +1,137 @@
+// The HMM mapper (thesis 4.8): states are a point's candidates, Viterbi in log space over the
+// points that have candidates (sketch/viterbi.h), O(n m^2).
+#include "core/error.h"
+#include "sketch/mappers.h"
+#include "sketch/stroke_candidates.h"
+#include "sketch/viterbi.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+namespace facesketch::sketch {
+
+Mapping mapHmm(const MappingProblem& problem)
+{
+    const MapperParams& params = problem.params;
+    const std::size_t n = problem.screen.size();
+    Mapping out;
+    out.chosen.assign(n, -1);
+    std::vector<std::size_t> points; // the trellis' layers: points with candidates, in order
+    for (std::size_t i = 0; i < n; ++i)
+        if (!problem.perPoint[i].empty())
+            points.push_back(i);
+    if (points.empty())
+        return out;
+
+    const double sigmaD = params.sigmaDTau * problem.tau;
+    const double sigmaSkel = params.sigmaSkelTau * problem.tau;
+    const Eigen::Vector3d axis = viewAxis(problem.camera);
+    const double ppmm = pixelsPerMm(problem.camera, problem.world[points[0]]);
+    auto candidate = [&](std::size_t point, Eigen::Index j) -> const Candidate& {
+        return problem.cloud[static_cast<std::size_t>(problem.perPoint[point][static_cast<std::size_t>(j)])];
+    };
+    auto screenOf = [](const Candidate& c) { return Eigen::Vector2d(c.screen[0], c.screen[1]); };
+    auto square = [](double x) { return x * x; };
+
+    // Initial (4.45).
+    const EndpointTerms ends = endpointTerms(problem, points, true);
+    Eigen::VectorXd logInitial(static_cast<Eigen::Index>(ends.sx.size()));
+    for (std::size_t j = 0; j < ends.sx.size(); ++j)
+        logInitial[static_cast<Eigen::Index>(j)] = -0.5 * square(ends.sx[j] / params.sigmaS) - 0.5 * square(ends.sy[j] / params.sigmaS);
+
+    // Emission (4.46, 4.47).
+    std::vector<Eigen::VectorXd> logEmission(points.size());
+    for (std::size_t l = 0; l < points.size(); ++l) {
+        const std::size_t i = points[l];
+        const Eigen::Index m = static_cast<Eigen::Index>(problem.perPoint[i].size());
+        logEmission[l].resize(m);
+        for (Eigen::Index j = 0; j < m; ++j)
+            logEmission[l][j] = -0.5 * square((screenOf(candidate(i, j)) - problem.screen[i]).norm() / sigmaD);
+    }
+
+    // 4.8.5.3: "the nearest stroke point is assigned to each contour", and psi_stroke compares
+    // the candidates' displacement with that of their nearest stroke points (not with the step
+    // between the two layers' points: with a stroke sampled more densely than the vertices,
+    // consecutive points mostly share a vertex, and the step would punish every move to the
+    // next vertex).
+    std::vector<int> nearestPoint(problem.cloud.size(), -1);
+    {
+        const GridIndex strokeIndex(problem.screen, std::max(params.densifyGapPx, 1.0));
+        for (std::size_t i : points)
+            for (int c : problem.perPoint[i])
+                if (nearestPoint[static_cast<std::size_t>(c)] < 0)
+                    nearestPoint[static_cast<std::size_t>(c)] = strokeIndex.nearest(screenOf(problem.cloud[static_cast<std::size_t>(c)]));
+    }
+
+    // Transition (4.48-4.53), one layer at a time.
+    auto transition = [&](std::size_t l, Eigen::MatrixXd& logT) {
+        const std::size_t a = points[l - 1], b = points[l];
+        for (Eigen::Index j = 0; j < logT.rows(); ++j) {
+            const Candidate& cj = candidate(a, j);
+            const Eigen::Vector2d sj = screenOf(cj);
+            const Eigen::Vector3d wj(cj.world[0], cj.world[1], cj.world[2]);
+            const Eigen::Vector2d& tj = problem.templateScreen[cj.vertex];
+            for (Eigen::Index q = 0; q < logT.cols(); ++q) {
+                const Candidate& cq = candidate(b, q);
+                const Eigen::Vector2d sq = screenOf(cq);
+                double logP = 0;
+                if (params.useConnectivity) {
+                    const int hops = problem.rings.hops(cj.vertex, cq.vertex);
+                    const double psiC = hops < 0 ? params.unreachableHops : hops;
+                    logP -= 0.5 * square(psiC / params.sigmaC);
+                }
+                if (params.useStroke) {
+                    // c' = screen xy and the depth along the view axis, both in pixels.
+                    const Eigen::Vector3d wq(cq.world[0], cq.world[1], cq.world[2]);
+                    const double dz = axis.dot(wq - wj) * ppmm;
+                    const double moved = std::sqrt((sq - sj).squaredNorm() + dz * dz);
+                    const int pj = nearestPoint[static_cast<std::size_t>(problem.perPoint[a][static_cast<std::size_t>(j)])];
+                    const int pq = nearestPoint[static_cast<std::size_t>(problem.perPoint[b][static_cast<std::size_t>(q)])];
+                    const double step
+                        = (problem.screen[static_cast<std::size_t>(pq)] - problem.screen[static_cast<std::size_t>(pj)]).norm();
+                    // The ratio of 4.49, its denominator at least the stroke's sampling step
+                    // (finer displacements are not resolved; two candidates sharing their
+                    // nearest point would divide by zero).
+                    const double psiStroke = (moved - step) / std::max(step, params.densifyGapPx);
+                    logP -= 0.5 * square(psiStroke / params.sigmaStroke);
+                }
+                if (params.useSkeleton) {
+                    const Eigen::Vector2d& tq = problem.templateScreen[cq.vertex];
+                    const double psiSkel = ((sq - sj) - (tq - tj)).norm();
+                    logP -= 0.5 * square(psiSkel / sigmaSkel);
+                }
+                logT(j, q) = logP;
+            }
+        }
+    };
+    const ViterbiPath path = viterbi(logInitial, logEmission, transition);
+
+    // 4.8.2: several points on one vertex keep the closest (the highest emission).
+    std::map<std::uint32_t, std::pair<double, std::size_t>> closest;
+    for (std::size_t l = 0; l < points.size(); ++l) {
+        const std::size_t i = points[l];
+        const int c = problem.perPoint[i][static_cast<std::size_t>(path.states[l])];
+        out.chosen[i] = c;
+        const Candidate& k = problem.cloud[static_cast<std::size_t>(c)];
+        const double d = (screenOf(k) - problem.screen[i]).norm();
+        auto [slot, inserted] = closest.try_emplace(k.vertex, d, i);
+        if (!inserted && d < slot->second.first)
+            slot->second = { d, i };
+    }
+    for (const auto& [vertex, best] : closest) {
+        const std::size_t i = best.second;
+        VertexObservation o;
+        o.vertex = vertex;
+        o.position
+            = adaptToStroke(problem.camera, problem.screen[i], problem.world[i], problem.cloud[static_cast<std::size_t>(out.chosen[i])]);
+        o.strokePoint = static_cast<int>(i);
+        out.observations.push_back(o);
+    }
+    std::sort(out.observations.begin(), out.observations.end(),
+        [](const VertexObservation& a, const VertexObservation& b) { return a.strokePoint < b.strokePoint; });
+    return out;
+}
+
+} // namespace facesketch::sketch

@@ -1,0 +1,268 @@
+#include "sketch/mapper.h"
+
+#include "contours/candidates_gpu.h"
+#include "contours/curvature_gpu.h"
+#include "core/error.h"
+#include "core/stopwatch.h"
+#include "geometry/graph.h"
+#include "geometry/mesh_batch.h"
+#include "geometry/wedges.h"
+#include "sketch/mappers.h"
+#include "sketch/projection.h"
+#include "sketch/stroke_candidates.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+
+namespace facesketch::sketch {
+
+const char* mapperName(MapperKind kind)
+{
+    switch (kind) {
+    case MapperKind::Nearest:
+        return "nearest";
+    case MapperKind::Heuristic:
+        return "heuristic";
+    case MapperKind::Hmm:
+        return "hmm";
+    case MapperKind::Simple:
+        return "simple";
+    }
+    return "unknown";
+}
+
+MapperKind parseMapper(const std::string& text)
+{
+    for (MapperKind k : { MapperKind::Nearest, MapperKind::Heuristic, MapperKind::Hmm, MapperKind::Simple })
+        if (text == mapperName(k))
+            return k;
+    fail("mapper '", text, "' is none of nearest, heuristic, hmm, simple");
+}
+
+void MapperParams::validate() const
+{
+    auto positive = [](const char* name, double v) {
+        if (!std::isfinite(v) || !(v > 0))
+            fail("mapper parameter ", name, " = ", v, " must be positive and finite");
+    };
+    auto nonNegative = [](const char* name, double v) {
+        if (!std::isfinite(v) || !(v >= 0))
+            fail("mapper parameter ", name, " = ", v, " must be non-negative and finite");
+    };
+    positive("densifyGapPx", densifyGapPx);
+    if (!std::isfinite(splineTension) || splineTension < 0 || splineTension > 1)
+        fail("mapper parameter splineTension = ", splineTension, " must be in [0, 1]");
+    positive("tauMm", tauMm);
+    positive("candidateRadiusTau", candidateRadiusTau);
+    positive("depthToleranceMm", depthToleranceMm);
+    if (borderRings < 0 || borderRings > 16)
+        fail("mapper parameter borderRings = ", borderRings, " must be in [0, 16]");
+    if (maxCandidatesPerPoint < 1)
+        fail("mapper parameter maxCandidatesPerPoint = ", maxCandidatesPerPoint, " must be at least 1");
+    positive("sigmaS", sigmaS);
+    positive("sigmaDTau", sigmaDTau);
+    positive("sigmaC", sigmaC);
+    positive("sigmaStroke", sigmaStroke);
+    positive("sigmaSkelTau", sigmaSkelTau);
+    nonNegative("unreachableHops", unreachableHops);
+    nonNegative("lambda", lambda);
+    nonNegative("alpha", alpha);
+    nonNegative("beta", beta);
+    nonNegative("heuristicEndpointRadiusTau", heuristicEndpointRadiusTau);
+}
+
+namespace {
+constexpr int kRings = 4; // 4.8.4: k = 4
+} // namespace
+
+struct StrokeReader::Impl {
+    Impl(gpu::Device& device, const stats::FaceModel& model, const std::vector<Mesh>& faces, std::vector<std::uint32_t> flagsIn)
+        : flags(std::move(flagsIn))
+        , curvature(device, model.triangles, model.vertexCount())
+        , rings(model.triangles, model.vertexCount(), kRings)
+        , device(device)
+    {
+        curvature.setPositions(meshMajorPositions(faces));
+        curvature.run();
+        cloud.emplace(device, curvature, flags);
+        faceCount = static_cast<std::uint32_t>(faces.size());
+        Mesh mean;
+        mean.F = model.triangles;
+        mean.V.resize(model.vertexCount(), 3);
+        for (Eigen::Index v = 0; v < model.vertexCount(); ++v)
+            mean.V.row(v) = model.meanFace.segment<3>(3 * v).transpose();
+        featureSize = meanEdgeLength(mean);
+        // Hops from the open border (edges of one triangle), up to kBorderScan rings.
+        std::map<std::pair<int, int>, int> edgeUse;
+        for (Eigen::Index t = 0; t < model.triangles.rows(); ++t)
+            for (int c = 0; c < 3; ++c) {
+                const int a = model.triangles(t, c), b = model.triangles(t, (c + 1) % 3);
+                ++edgeUse[{ std::min(a, b), std::max(a, b) }];
+            }
+        borderHops.assign(static_cast<std::size_t>(model.vertexCount()), kBorderScan);
+        std::vector<std::uint32_t> frontier;
+        for (const auto& [edge, uses] : edgeUse)
+            if (uses == 1)
+                for (int v : { edge.first, edge.second })
+                    if (borderHops[static_cast<std::size_t>(v)] != 0) {
+                        borderHops[static_cast<std::size_t>(v)] = 0;
+                        frontier.push_back(static_cast<std::uint32_t>(v));
+                    }
+        const Neighbours oneRing = buildNeighbours(buildWedges(model.triangles, model.vertexCount()));
+        for (int h = 1; h < kBorderScan && !frontier.empty(); ++h) {
+            std::vector<std::uint32_t> next;
+            for (std::uint32_t v : frontier)
+                for (std::uint32_t e = oneRing.offsets[v]; e < oneRing.offsets[v + 1]; ++e)
+                    if (borderHops[oneRing.vertices[e]] > h) {
+                        borderHops[oneRing.vertices[e]] = h;
+                        next.push_back(oneRing.vertices[e]);
+                    }
+            frontier.swap(next);
+        }
+    }
+    static constexpr int kBorderScan = 16;
+    std::vector<int> borderHops; // per vertex: rings from the open border (kBorderScan: further)
+
+    std::vector<std::uint32_t> flags;
+    GpuCurvature curvature;
+    std::optional<GpuCandidates> cloud;
+    RingDistances rings;
+    gpu::Device& device;
+    double featureSize = 1;
+    std::uint32_t faceCount = 0;
+    // The simple mapper's own-contour pass: one mesh (the current face), made on first use.
+    std::unique_ptr<GpuCurvature> ownCurvature;
+    std::optional<GpuCandidates> ownCloud;
+};
+
+StrokeReader::StrokeReader(
+    gpu::Device& device, const stats::FaceModel& model, const std::vector<Mesh>& candidateFaces, std::vector<std::uint32_t> flags)
+    : model_(model)
+{
+    const Eigen::Index nv = model.vertexCount();
+    if (candidateFaces.empty())
+        fail("StrokeReader: no candidate faces");
+    for (std::size_t i = 0; i < candidateFaces.size(); ++i)
+        if (candidateFaces[i].V.rows() != nv || candidateFaces[i].F.rows() != model.triangles.rows())
+            fail("StrokeReader: candidate face ", i, " has ", candidateFaces[i].V.rows(), " vertices and ", candidateFaces[i].F.rows(),
+                " triangles; the model has ", nv, " and ", model.triangles.rows());
+    if (!flags.empty() && static_cast<Eigen::Index>(flags.size()) != nv)
+        fail("StrokeReader: ", flags.size(), " vertex flags for a model of ", nv, " vertices");
+    impl_ = std::make_unique<Impl>(device, model, candidateFaces, std::move(flags));
+}
+
+StrokeReader::~StrokeReader() = default;
+
+StrokeReading StrokeReader::read(const Stroke& stroke, const Mesh& currentFace, MapperKind kind, const MapperParams& params)
+{
+    validateStroke(stroke, "stroke");
+    params.validate();
+    const Eigen::Index nv = model_.vertexCount();
+    if (currentFace.V.rows() != nv || currentFace.F.rows() != model_.triangles.rows())
+        fail("stroke: the current face has ", currentFace.V.rows(), " vertices and ", currentFace.F.rows(), " triangles; the model has ",
+            nv, " and ", model_.triangles.rows());
+    validateMesh(currentFace, "stroke: the current face");
+
+    Stopwatch clock;
+    const Camera camera = orbitCamera(stroke.view);
+    const ProjectedStroke projected = projectStroke(stroke, camera, currentFace, params.densifyGapPx, params.splineTension);
+    StrokeReading reading;
+    reading.screenPoints = projected.screen;
+    reading.worldPoints = projected.world;
+    reading.viewPlane = viewPlaneRows(camera);
+    const std::size_t n = projected.screen.size();
+    reading.candidateCounts.assign(n, 0);
+    reading.chosen.assign(n, -1);
+
+    const Eigen::Vector3d centre = 0.5 * (currentFace.V.colwise().minCoeff() + currentFace.V.colwise().maxCoeff()).transpose();
+    const double tau = params.tauMm * pixelsPerMm(camera, centre);
+    const double radiusPx = params.candidateRadiusTau * tau;
+
+    ContourParams contour;
+    contour.silhouetteThreshold = defaultSilhouetteThreshold(nv);
+    contour.featureSize = impl_->featureSize;
+    const double ppmm = pixelsPerMm(camera, centre);
+    if (!strokeBox(contour, camera, projected.screen, projected.world, radiusPx, std::hypot(radiusPx / ppmm, params.depthToleranceMm))) {
+        reading.message = "no point of the stroke lies on screen: nothing read";
+        timing_ = { clock.milliseconds(), 0 };
+        return reading;
+    }
+    auto ownCandidates = [&] {
+        if (!impl_->ownCurvature) {
+            impl_->ownCurvature = std::make_unique<GpuCurvature>(impl_->device, model_.triangles, nv);
+            impl_->ownCurvature->setPositions(meshMajorPositions({ currentFace }));
+            impl_->ownCurvature->run();
+            impl_->ownCloud.emplace(impl_->device, *impl_->ownCurvature, impl_->flags);
+        } else {
+            impl_->ownCurvature->setPositions(meshMajorPositions({ currentFace }));
+            impl_->ownCurvature->run();
+        }
+        return impl_->ownCloud->build(camera, contour);
+    };
+    std::vector<Candidate> cloud;
+    if (kind == MapperKind::Simple) {
+        // 4.6.3: the current face's own contours instead of the training faces' cloud.
+        cloud = ownCandidates();
+    } else {
+        cloud = impl_->cloud->build(camera, contour);
+        if (params.ownContours)
+            for (Candidate c : ownCandidates()) {
+                c.mesh = impl_->faceCount;
+                cloud.push_back(c);
+            }
+    }
+    if (params.borderRings > 0)
+        cloud.erase(std::remove_if(cloud.begin(), cloud.end(),
+                        [&](const Candidate& c) {
+                            return !(c.types & ContourLabelled) && (c.types & ContourSilhouette)
+                                && impl_->borderHops[c.vertex] < params.borderRings;
+                        }),
+            cloud.end());
+    const std::vector<std::vector<int>> perPoint = candidatesPerPoint(
+        cloud, camera, projected.screen, projected.world, radiusPx, params.depthToleranceMm, params.maxCandidatesPerPoint);
+    std::size_t withCandidates = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        reading.candidateCounts[i] = static_cast<int>(perPoint[i].size());
+        withCandidates += !perPoint[i].empty();
+    }
+    std::vector<Eigen::Vector2d> templateScreen(static_cast<std::size_t>(nv));
+    for (Eigen::Index v = 0; v < nv; ++v) {
+        const glm::dvec3 s = camera.project(glm::dvec3(currentFace.V(v, 0), currentFace.V(v, 1), currentFace.V(v, 2)));
+        templateScreen[static_cast<std::size_t>(v)] = Eigen::Vector2d(s.x, s.y);
+    }
+    const double candidatesMs = clock.milliseconds();
+    if (withCandidates == 0) {
+        reading.message = cat("no contour candidate lies within ", radiusPx, " px of the stroke",
+            projected.fellBackToPaper ? " (it misses the face)" : "", ": nothing read");
+        timing_ = { candidatesMs, 0 };
+        return reading;
+    }
+
+    const MappingProblem problem { camera, projected.screen, projected.world, cloud, perPoint, templateScreen, impl_->rings, tau, params };
+    Mapping mapping;
+    switch (kind) {
+    case MapperKind::Nearest:
+    case MapperKind::Simple:
+        mapping = mapNearest(problem);
+        break;
+    case MapperKind::Heuristic:
+        mapping = mapHeuristic(problem);
+        break;
+    case MapperKind::Hmm:
+        mapping = mapHmm(problem);
+        break;
+    }
+    reading.chosen = mapping.chosen;
+    reading.observations = std::move(mapping.observations);
+    for (VertexObservation& o : reading.observations)
+        o.viewPlaneOnly = params.viewPlaneOnly;
+    if (withCandidates < n)
+        reading.message
+            = cat(n - withCandidates, " of ", n, " points have no contour candidate within ", radiusPx, " px and were not read");
+    timing_ = { candidatesMs, clock.milliseconds() - candidatesMs };
+    return reading;
+}
+
+} // namespace facesketch::sketch

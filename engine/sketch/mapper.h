@@ -1,0 +1,157 @@
+#pragma once
+// Reading a stroke: from the points a user drew in one view to the face model's vertices they
+// pin down (thesis 4.4, 4.6, 4.8). One StrokeReader per (model, candidate faces) reads every
+// stroke:
+//   1. densify and project the stroke onto its surface (sketch/projection.h, 4.1.1);
+//   2. build the contour candidate cloud of the stroke's box on the GPU and give every point
+//      the candidates within a screen radius scaled by tau and a depth tolerance
+//      (sketch/stroke_candidates.h, 4.4, 4.8.5.2);
+//   3. map points to candidates with one of four mappers:
+//      - Nearest: each point to its nearest candidate; several points on one vertex average
+//        (the baseline, and the mapping `eval contours` scores);
+//      - Heuristic (4.6.1-4.6.2): the grade of eq. 4.29 (endpoint terms 4.30-4.35, s1 and s2 of
+//        4.36-4.37), conditions 1 and 2, optionally times the connectivity factor of 4.9;
+//      - Hmm (4.8): initial 4.45, emission 4.46-4.47, transition 4.48-4.53 over the k-ring map
+//        (geometry/graph.h, k = 4), Viterbi in log space (sketch/viterbi.h); several points on
+//        one state keep the closest (4.8.2);
+//      - Simple (4.6.3): each point to the nearest of the current face's own contours.
+//      Every mapper adapts the chosen candidate to the stroke in screen space (4.6.2): the
+//      observation is the candidate moved along the view plane onto the stroke point, keeping
+//      the candidate's depth.
+//
+// Complexity per stroke of n densified points, each with at most m candidates (m <=
+// MapperParams::maxCandidatesPerPoint), over a cloud of M candidates in the box:
+//   candidates O(GPU cloud + M + n m log m); nearest and simple O(n); heuristic O(n m);
+//   HMM O(n m^2) transitions (each an O(log r) look-up in the ring map, r ~ 61 entries per
+//   vertex), never one M x M matrix over the whole box. Memory O(n m) plus one m x m layer.
+
+#include "contours/candidates.h"
+#include "core/mesh.h"
+#include "gpu/device.h"
+#include "sketch/reading.h"
+#include "sketch/stroke.h"
+#include "stats/face_model.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace facesketch::sketch {
+
+enum class MapperKind { Nearest, Heuristic, Hmm, Simple };
+
+/// "nearest", "heuristic", "hmm", "simple"; parseMapper throws Error naming other text.
+const char* mapperName(MapperKind kind);
+MapperKind parseMapper(const std::string& text);
+
+/// Every sigma and threshold of stroke reading. Defaults are the thesis' values where it gives
+/// one (section named), and otherwise the value chosen here (said so).
+struct MapperParams {
+    // --- projection (4.1.1) ---
+    /// Consecutive points further apart than this (pixels) get cardinal-spline points between
+    /// them. The thesis says "a certain threshold"; 4 px here.
+    double densifyGapPx = 4.0;
+    /// Cardinal spline tension in [0, 1] (0: Catmull-Rom). Not given by the thesis.
+    double splineTension = 0.0;
+
+    // --- candidates (4.4, 4.8.5.2) ---
+    /// tau: the screen-space coefficient of 4.8.5.2, "the screen distance between two fixed
+    /// vertices" of the face. Here the screen length of tauMm millimetres at the face's centre,
+    /// parallel to the view plane: it grows with zoom as the thesis' does, but does not depend
+    /// on the topology or shrink when the two vertices line up with the view ray.
+    double tauMm = 5.0;
+    /// A point's candidates lie within this many tau of it on screen (4.4's "variable threshold
+    /// screen distance"). The thesis gives no value; 2 tau (= sigma_d).
+    double candidateRadiusTau = 2.0;
+    /// ... and within this distance (mm) of the point's projected depth along the view axis
+    /// (4.4's "fixed world distance"). Not given by the thesis; 40 mm keeps the front and back
+    /// of a face apart but not a nose from its cheek.
+    double depthToleranceMm = 40.0;
+    /// At most this many candidates per point, the nearest on screen (bounds m in O(n m^2)).
+    int maxCandidatesPerPoint = 48;
+    /// Silhouette candidates (not labelled) on vertices fewer than this many rings from the
+    /// mesh's open border are dropped: a face mask's border seen edge-on is a silhouette of
+    /// the mask, not of the face (issue 12's suspect). 0 keeps them all (the thesis).
+    int borderRings = 0;
+    /// The current face's own contour candidates join the training faces' cloud (mesh index
+    /// = the number of candidate faces). Beyond the thesis: as the face approaches the sketched
+    /// one, its own contours carry the right vertex where other faces offer a neighbour's
+    /// (evaluation/contour_eval.h does the same in its refinements). Costs the curvature of one
+    /// mesh per stroke.
+    bool ownContours = false;
+    /// Observations pin only the image of the vertex in the view (its depth is left to the
+    /// model) instead of the candidate's depth adapted to the stroke (4.6.2).
+    bool viewPlaneOnly = false;
+
+    // --- HMM (4.8.5) ---
+    double sigmaS = 0.4;             ///< initial probability, eq. 4.45
+    double sigmaDTau = 2.0;          ///< emission, eq. 4.47: sigma_d = sigmaDTau x tau
+    double sigmaC = 3.0;             ///< connectivity, eq. 4.48 (hops in the k-ring map)
+    double sigmaStroke = 0.5;        ///< stroke ratio, eq. 4.50
+    double sigmaSkelTau = 1.0 / 6.5; ///< skeleton, eq. 4.52: sigma_skel = sigmaSkelTau x tau
+    /// Hops charged to a transition between vertices more than k = 4 rings apart (4.8.4 calls
+    /// such transitions infeasible; a finite charge keeps a stroke readable across a gap in the
+    /// candidates). Not given by the thesis.
+    double unreachableHops = 8.0;
+    bool useConnectivity = true; ///< gamma_1 (4.48) on; off for the thesis' comparison of 4.9
+    bool useStroke = true;       ///< gamma_2 (4.50)
+    bool useSkeleton = true;     ///< gamma_3 (4.52)
+
+    // --- heuristic (4.6.1) ---
+    double lambda = 1.0; ///< weight of the endpoint term of eq. 4.29 (in tau units)
+    double alpha = 0.5;  ///< weight of s1 (4.36); alpha + beta = 1
+    double beta = 0.5;   ///< weight of s2 (4.37)
+    /// Multiply the grade's error by (1 + hops) between the previous and the candidate vertex
+    /// (4.9's "heuristic approach with connectivity", which the thesis found much better than
+    /// 4.29 alone; here too: on the lip test, 0.9 of the vertices on or next to the lip with it,
+    /// 0.5 without). false gives 4.6's grade alone.
+    bool heuristicConnectivity = true;
+    /// The endpoint term chooses among the end point's candidates within this many tau (and
+    /// always the nearest): 4.30-4.31 pick the box's extreme, which over the whole candidate
+    /// radius overshoots the stroke's end. Not in the thesis (its radius was one threshold).
+    double heuristicEndpointRadiusTau = 0.5;
+
+    /// The thesis' values (the defaults).
+    static MapperParams thesis() { return {}; }
+    /// Throws Error naming the first field that is not positive/finite where it must be.
+    void validate() const;
+};
+
+/// One per (model, candidate faces); reused for every stroke. Holds the candidate faces'
+/// curvature on the GPU (computed once here, as the thesis' offline pass) and the k-ring map.
+class StrokeReader {
+public:
+    /// candidateFaces share the model's topology (the faces whose contours form the cloud,
+    /// thesis: 230); flags holds #V VertexFlag bits (or is empty). Throws Error for a face of
+    /// another topology (naming its index) or flags of the wrong size.
+    StrokeReader(
+        gpu::Device& device, const stats::FaceModel& model, const std::vector<Mesh>& candidateFaces, std::vector<std::uint32_t> flags);
+    ~StrokeReader();
+    StrokeReader(const StrokeReader&) = delete;
+    StrokeReader& operator=(const StrokeReader&) = delete;
+
+    /// Reads one stroke against the current face (on the model's topology). Throws Error
+    /// (naming what is wrong) for a stroke that cannot be read: no points, a non-finite
+    /// coordinate, a bad view (validateStroke), a face of another topology, a plane seen
+    /// edge-on. A stroke that can be read but pins nothing (off screen, over empty background,
+    /// a single point with no candidate) returns a reading with no observations and says why
+    /// in StrokeReading::message. Never changes any state the caller owns.
+    StrokeReading read(const Stroke& stroke, const Mesh& currentFace, MapperKind kind, const MapperParams& params = {});
+
+    struct Timing {
+        double candidatesMs = 0; ///< projection, GPU cloud and per-point sets
+        double mappingMs = 0;    ///< the mapper
+    };
+    Timing lastTiming() const { return timing_; }
+
+    const stats::FaceModel& model() const { return model_; }
+
+private:
+    struct Impl;
+    const stats::FaceModel& model_;
+    std::unique_ptr<Impl> impl_;
+    Timing timing_;
+};
+
+} // namespace facesketch::sketch

@@ -1,0 +1,335 @@
+#include "sketch/session.h"
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+namespace facesketch::sketch {
+
+using nlohmann::json;
+
+namespace {
+
+// A JSON value with the path that leads to it, for messages such as
+// "actions[3].stroke.points[12].x: not a finite number".
+struct Node {
+    const json& value;
+    std::string path;
+    const std::string& where;
+
+    [[noreturn]] void bad(const std::string& problem) const { fail(where, ": ", path.empty() ? "(document)" : path, ": ", problem); }
+
+    std::string child(const std::string& key) const { return path.empty() ? key : path + "." + key; }
+
+    const Node& object(const std::set<std::string>& allowed) const
+    {
+        if (!value.is_object())
+            bad(cat("expected an object, found ", value.type_name()));
+        for (const auto& item : value.items())
+            if (!allowed.count(item.key()))
+                fail(where, ": ", child(item.key()), ": unknown field");
+        return *this;
+    }
+
+    Node operator[](const std::string& key) const
+    {
+        if (!value.contains(key))
+            fail(where, ": ", child(key), ": missing");
+        return { value.at(key), child(key), where };
+    }
+    bool has(const std::string& key) const { return value.contains(key); }
+
+    Node at(size_t i) const { return { value.at(i), cat(path, "[", i, "]"), where }; }
+
+    size_t arraySize() const
+    {
+        if (!value.is_array())
+            bad(cat("expected an array, found ", value.type_name()));
+        return value.size();
+    }
+
+    double number() const
+    {
+        if (!value.is_number())
+            bad(cat("expected a number, found ", value.type_name()));
+        const double x = value.get<double>();
+        if (!std::isfinite(x))
+            bad(cat("not a finite number (", x, ")"));
+        return x;
+    }
+
+    double positive() const
+    {
+        const double x = number();
+        if (!(x > 0))
+            bad(cat("must be positive, found ", x));
+        return x;
+    }
+
+    int integer(int lo, int hi) const
+    {
+        if (!value.is_number_integer())
+            bad(cat("expected an integer, found ", value.is_number() ? value.dump() : value.type_name()));
+        const auto x = value.get<long long>();
+        if (x < lo || x > hi)
+            bad(cat("must lie in [", lo, ", ", hi, "], found ", x));
+        return static_cast<int>(x);
+    }
+
+    bool boolean() const
+    {
+        if (!value.is_boolean())
+            bad(cat("expected true or false, found ", value.type_name()));
+        return value.get<bool>();
+    }
+
+    std::string text() const
+    {
+        if (!value.is_string())
+            bad(cat("expected a string, found ", value.type_name()));
+        return value.get<std::string>();
+    }
+};
+
+// Largest viewport side a session accepts: far beyond any screen, small enough that w * h fits.
+constexpr int kMaxViewport = 32768;
+
+OrbitView parseView(const Node& n)
+{
+    n.object({ "target", "azimuth", "elevation", "distance", "projection", "half_height", "fov_y", "near", "far", "width", "height" });
+    OrbitView v;
+    const Node target = n["target"];
+    if (target.arraySize() != 3)
+        target.bad(cat("expected 3 numbers (x, y, z in mm), found ", target.value.size()));
+    v.target = { target.at(0).number(), target.at(1).number(), target.at(2).number() };
+    v.angles.azimuthDeg = n["azimuth"].number();
+    v.angles.elevationDeg = n["elevation"].number();
+    if (std::abs(v.angles.elevationDeg) > 90)
+        n["elevation"].bad(cat("must lie in [-90, 90] degrees, found ", v.angles.elevationDeg));
+    v.distance = n["distance"].positive();
+    const std::string kind = n["projection"].text();
+    if (kind == "orthographic")
+        v.kind = Projection::Orthographic;
+    else if (kind == "perspective")
+        v.kind = Projection::Perspective;
+    else
+        n["projection"].bad(cat("expected \"orthographic\" or \"perspective\", found \"", kind, "\""));
+    v.halfHeight = n["half_height"].positive();
+    v.fovY = n["fov_y"].positive();
+    if (v.fovY >= 3.14159)
+        n["fov_y"].bad(cat("must be below pi radians, found ", v.fovY));
+    v.nearPlane = n["near"].positive();
+    v.farPlane = n["far"].positive();
+    if (v.farPlane <= v.nearPlane)
+        n["far"].bad(cat("must exceed near (", v.nearPlane, "), found ", v.farPlane));
+    v.width = n["width"].integer(1, kMaxViewport);
+    v.height = n["height"].integer(1, kMaxViewport);
+    try {
+        (void)orbitCamera(v);
+    } catch (const Error& e) {
+        n.bad(e.what());
+    }
+    return v;
+}
+
+Stroke parseStroke(const Node& n)
+{
+    n.object({ "points", "view", "surface" });
+    Stroke s;
+    s.view = parseView(n["view"]);
+    const Node surface = n["surface"];
+    const std::string surfaceText = surface.text();
+    try {
+        s.surface = parseSurface(surfaceText);
+    } catch (const Error& e) {
+        surface.bad(e.what());
+    }
+    const Node points = n["points"];
+    const size_t count = points.arraySize();
+    if (count == 0)
+        points.bad("a stroke needs at least one point");
+    s.points.reserve(count);
+    for (size_t i = 0; i < count; ++i) {
+        const Node p = points.at(i);
+        p.object({ "x", "y", "t" });
+        StrokePoint q;
+        q.x = p["x"].number();
+        q.y = p["y"].number();
+        if (p.has("t")) {
+            q.timeMs = p["t"].number();
+            if (*q.timeMs < 0)
+                p["t"].bad(cat("a time in ms since the stroke began cannot be negative, found ", *q.timeMs));
+            if (i > 0 && s.points.back().timeMs && *q.timeMs < *s.points.back().timeMs)
+                p["t"].bad(cat("goes backwards (", *q.timeMs, " after ", *s.points.back().timeMs, ")"));
+        }
+        if (i > 0 && q.timeMs.has_value() != s.points.front().timeMs.has_value())
+            p.bad("either every point of a stroke has a time \"t\" or none has");
+        s.points.push_back(q);
+    }
+    return s;
+}
+
+ReadingOptions parseReading(const Node& n)
+{
+    n.object({ "mapper", "correlation", "symmetry" });
+    ReadingOptions r;
+    r.mapper = n["mapper"].text();
+    const auto& names = sessionMapperNames();
+    if (std::find(names.begin(), names.end(), r.mapper) == names.end())
+        n["mapper"].bad(cat("expected nearest, heuristic, hmm or simple, found \"", r.mapper, "\""));
+    r.correlation = n["correlation"].boolean();
+    r.symmetry = n["symmetry"].boolean();
+    return r;
+}
+
+json viewJson(const OrbitView& v)
+{
+    return json { { "target", { v.target.x, v.target.y, v.target.z } }, { "azimuth", v.angles.azimuthDeg },
+        { "elevation", v.angles.elevationDeg }, { "distance", v.distance },
+        { "projection", v.kind == Projection::Orthographic ? "orthographic" : "perspective" }, { "half_height", v.halfHeight },
+        { "fov_y", v.fovY }, { "near", v.nearPlane }, { "far", v.farPlane }, { "width", v.width }, { "height", v.height } };
+}
+
+} // namespace
+
+const std::vector<std::string>& sessionMapperNames()
+{
+    static const std::vector<std::string> names = { "nearest", "heuristic", "hmm", "simple" };
+    return names;
+}
+
+Session parseSession(const std::string& text, const std::string& where)
+{
+    json doc;
+    try {
+        doc = json::parse(text);
+    } catch (const json::parse_error& e) {
+        // nlohmann's byte offset tells a truncated file (offset at the end) from a typo.
+        fail(where, ": not a complete JSON document (", text.size(), " bytes; truncated?): ", e.what());
+    } catch (const json::exception& e) {
+        // e.g. a number too large for a double ("1e999"): nlohmann names its text, not its path.
+        fail(where, ": not a valid session document: ", e.what());
+    }
+    const Node root { doc, "", where };
+    root.object({ "format", "version", "model", "dataset", "actions" });
+    const std::string format = root["format"].text();
+    if (format != kSessionFormat)
+        root["format"].bad(cat("expected \"", kSessionFormat, "\", found \"", format, "\""));
+    const Node version = root["version"];
+    if (!version.value.is_number_integer() || version.value.get<long long>() != kSessionVersion)
+        version.bad(cat("this build reads version ", kSessionVersion, " only, found ", version.value.dump()));
+
+    Session s;
+    s.model = root["model"].text();
+    if (s.model.empty())
+        root["model"].bad("empty path");
+    s.dataset = root["dataset"].text();
+    if (s.dataset.empty())
+        root["dataset"].bad("empty path");
+    const Node actions = root["actions"];
+    const size_t count = actions.arraySize();
+    for (size_t i = 0; i < count; ++i) {
+        const Node a = actions.at(i);
+        a.object({ "type", "stroke", "reading" });
+        const std::string type = a["type"].text();
+        if (type != "stroke")
+            a["type"].bad(cat("expected \"stroke\" (the only action of version 1), found \"", type, "\""));
+        s.actions.push_back({ parseStroke(a["stroke"]), parseReading(a["reading"]) });
+    }
+    return s;
+}
+
+Session loadSession(const std::filesystem::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        fail(path.string(), ": cannot open the session file");
+    std::stringstream text;
+    text << in.rdbuf();
+    if (in.bad())
+        fail(path.string(), ": read error");
+    return parseSession(text.str(), path.string());
+}
+
+std::pair<std::filesystem::path, std::filesystem::path> sessionInputs(const Session& session, const std::filesystem::path& sessionFile)
+{
+    const std::filesystem::path folder = sessionFile.parent_path();
+    const std::filesystem::path model = session.model.is_absolute() ? session.model : folder / session.model;
+    const std::filesystem::path dataset = session.dataset.is_absolute() ? session.dataset : folder / session.dataset;
+    if (!std::filesystem::is_regular_file(model))
+        fail(sessionFile.string(), ": model: no model file at ", model.string());
+    if (!std::filesystem::is_regular_file(dataset / "manifest.json"))
+        fail(sessionFile.string(), ": dataset: no dataset (manifest.json) at ", dataset.string());
+    return { model, dataset };
+}
+
+std::string sessionToJson(const Session& session)
+{
+    json actions = json::array();
+    for (const StrokeAction& a : session.actions) {
+        json points = json::array();
+        for (const StrokePoint& p : a.stroke.points) {
+            json q { { "x", p.x }, { "y", p.y } };
+            if (p.timeMs)
+                q["t"] = *p.timeMs;
+            points.push_back(std::move(q));
+        }
+        actions.push_back({ { "type", "stroke" },
+            { "stroke",
+                { { "points", std::move(points) }, { "view", viewJson(a.stroke.view) }, { "surface", surfaceName(a.stroke.surface) } } },
+            { "reading",
+                { { "mapper", a.reading.mapper }, { "correlation", a.reading.correlation }, { "symmetry", a.reading.symmetry } } } });
+    }
+    const json doc { { "format", kSessionFormat }, { "version", kSessionVersion }, { "model", session.model.generic_string() },
+        { "dataset", session.dataset.generic_string() }, { "actions", std::move(actions) } };
+    std::string text = doc.dump(1) + "\n";
+    // Whatever the caller built must read back: the same checks as loading, before any write.
+    (void)parseSession(text, "session to save");
+    return text;
+}
+
+void saveSession(const std::filesystem::path& path, const Session& session)
+{
+    const std::string text = sessionToJson(session);
+    writeFileAtomically(path, [&](std::ostream& out) { out << text; });
+}
+
+bool operator==(const StrokePoint& a, const StrokePoint& b)
+{
+    return a.x == b.x && a.y == b.y && a.timeMs == b.timeMs;
+}
+
+bool operator==(const OrbitView& a, const OrbitView& b)
+{
+    return a.target == b.target && a.angles.azimuthDeg == b.angles.azimuthDeg && a.angles.elevationDeg == b.angles.elevationDeg
+        && a.distance == b.distance && a.kind == b.kind && a.halfHeight == b.halfHeight && a.fovY == b.fovY && a.nearPlane == b.nearPlane
+        && a.farPlane == b.farPlane && a.width == b.width && a.height == b.height;
+}
+
+bool operator==(const Stroke& a, const Stroke& b)
+{
+    return a.points == b.points && a.view == b.view && a.surface == b.surface;
+}
+
+bool operator==(const ReadingOptions& a, const ReadingOptions& b)
+{
+    return a.mapper == b.mapper && a.correlation == b.correlation && a.symmetry == b.symmetry;
+}
+
+bool operator==(const StrokeAction& a, const StrokeAction& b)
+{
+    return a.stroke == b.stroke && a.reading == b.reading;
+}
+
+bool operator==(const Session& a, const Session& b)
+{
+    return a.model == b.model && a.dataset == b.dataset && a.actions == b.actions;
+}
+
+} // namespace facesketch::sketch

@@ -1,0 +1,274 @@
+#include "sketch/tracking.h"
+
+#include "core/error.h"
+#include "sketch/symmetry.h"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace facesketch::sketch {
+
+namespace {
+
+// Singular values below this (relative to the largest) count as a missing direction when
+// constraints of several views are stacked: two views 10 degrees apart still span 3D.
+constexpr double kRankTolerance = 0.1;
+
+Eigen::Vector3d viewAxisOf(const Eigen::Matrix<double, 2, 3>& P)
+{
+    return P.row(0).transpose().cross(P.row(1).transpose()).normalized();
+}
+
+} // namespace
+
+void addCombined(stats::Observations& observations, Eigen::Index vertex, const std::vector<VertexConstraint>& constraints)
+{
+    if (constraints.empty())
+        return;
+    if (constraints.size() == 1 && constraints[0].rows == 3) {
+        // A 3D constraint's rows are orthonormal: its position is A^T b.
+        observations.addVertex(vertex, constraints[0].A.transpose() * constraints[0].b);
+        return;
+    }
+    if (constraints.size() == 1 && constraints[0].rows == 2) {
+        observations.addProjectedVertex(vertex, constraints[0].A.topRows<2>(), constraints[0].b.head<2>());
+        return;
+    }
+    int rows = 0;
+    for (const VertexConstraint& c : constraints)
+        rows += c.rows;
+    Eigen::MatrixXd A(rows, 3);
+    Eigen::VectorXd b(rows);
+    int r = 0;
+    for (const VertexConstraint& c : constraints) {
+        A.middleRows(r, c.rows) = c.A.topRows(c.rows);
+        b.segment(r, c.rows) = c.b.head(c.rows);
+        r += c.rows;
+    }
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeThinU | Eigen::ComputeThinV);
+    const Eigen::VectorXd& s = svd.singularValues();
+    int rank = 0;
+    for (Eigen::Index i = 0; i < s.size(); ++i)
+        rank += s[i] > kRankTolerance * s[0] ? 1 : 0;
+    // Least squares within the spanned directions only (minimum norm across the others).
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int i = 0; i < rank; ++i)
+        x += svd.matrixV().col(i) * (svd.matrixU().col(i).dot(b) / s[i]);
+    if (rank == 3) {
+        observations.addVertex(vertex, x);
+    } else if (rank == 2) {
+        const Eigen::Matrix<double, 2, 3> P = svd.matrixV().leftCols<2>().transpose();
+        observations.addProjectedVertex(vertex, P, P * x);
+    } else {
+        // All rows along one direction cannot come from whole views (each has 2 rows); keep
+        // the first constraint rather than invent a plane.
+        observations.addProjectedVertex(vertex, constraints[0].A.topRows<2>(), constraints[0].b.head<2>());
+    }
+}
+
+TrackingModel::TrackingModel(const stats::FaceModel& model, const TrackingOptions& options)
+    : model_(model)
+    , options_(options)
+{
+    if (model.meanFace.size() == 0 || model.meanFace.size() % 3 != 0)
+        fail("TrackingModel: the model has no mean face");
+    if (!(options.supersedeRadius >= 0) || !std::isfinite(options.supersedeRadius))
+        fail("TrackingModel: supersedeRadius must be a finite distance >= 0 mm, found ", options.supersedeRadius);
+    if (!(options.supersedeAngleDeg >= 0 && options.supersedeAngleDeg <= 180))
+        fail("TrackingModel: supersedeAngleDeg must lie in [0, 180], found ", options.supersedeAngleDeg);
+    TrackingState start;
+    start.constraints.resize(static_cast<size_t>(model.vertexCount()));
+    start.face = model.meanFace;
+    history_.push_back(std::move(start));
+}
+
+int TrackingModel::observedVertices() const
+{
+    int n = 0;
+    for (const auto& c : state().constraints)
+        n += c.empty() ? 0 : 1;
+    return n;
+}
+
+stats::Observations TrackingModel::observations() const
+{
+    stats::Observations obs;
+    const auto& constraints = state().constraints;
+    for (size_t v = 0; v < constraints.size(); ++v)
+        addCombined(obs, static_cast<Eigen::Index>(v), constraints[v]);
+    return obs;
+}
+
+Mesh TrackingModel::faceMesh() const
+{
+    Mesh mesh;
+    mesh.F = model_.triangles;
+    const Eigen::Index nv = model_.vertexCount();
+    mesh.V.resize(nv, 3);
+    for (Eigen::Index v = 0; v < nv; ++v)
+        mesh.V.row(v) = face().segment<3>(3 * v).transpose();
+    return mesh;
+}
+
+void TrackingModel::apply(const StrokeReading& reading, const ApplyOptions& options)
+{
+    const Eigen::Index nv = model_.vertexCount();
+    // Everything is checked before the state is touched.
+    if (reading.observations.empty())
+        fail("tracking: the stroke's reading pins no vertex");
+    const bool anyPlane = [&] {
+        for (const VertexObservation& o : reading.observations)
+            if (o.viewPlaneOnly)
+                return true;
+        return false;
+    }();
+    const Eigen::Matrix<double, 2, 3>& P = reading.viewPlane;
+    const bool planeValid = P.allFinite() && ((P * P.transpose()) - Eigen::Matrix2d::Identity()).cwiseAbs().maxCoeff() <= 1e-9;
+    if (anyPlane && !planeValid)
+        fail("tracking: the reading's viewPlane rows are not orthonormal (needed by its view-plane observations)");
+    std::set<std::uint32_t> seen;
+    for (size_t i = 0; i < reading.observations.size(); ++i) {
+        const VertexObservation& o = reading.observations[i];
+        if (o.vertex >= static_cast<std::uint64_t>(nv))
+            fail("tracking: observations[", i, "].vertex ", o.vertex, " outside [0, ", nv, ")");
+        if (!o.position.allFinite())
+            fail("tracking: observations[", i, "].position of vertex ", o.vertex, " is not finite");
+        if (!seen.insert(o.vertex).second)
+            fail("tracking: observations[", i, "]: vertex ", o.vertex, " is observed twice by one stroke");
+    }
+    if (options.mirror && options.mirror->size() != nv)
+        fail("tracking: the mirror map has ", options.mirror->size(), " vertices, the model ", nv);
+
+    TrackingState next = state();
+    next.strokes += 1;
+    const int stroke = next.strokes;
+    // Without a view plane (every observation in 3D) the stroke has no view to compare: it
+    // supersedes whatever lies near it.
+    const bool hasView = planeValid;
+    const Eigen::Vector3d axis = hasView ? viewAxisOf(P) : Eigen::Vector3d::UnitZ();
+    const double cosLimit = std::cos(options_.supersedeAngleDeg * M_PI / 180.0);
+
+    // New constraints per vertex: the stroke's own, then its mirror images where the stroke
+    // did not itself map.
+    std::vector<std::pair<std::uint32_t, VertexConstraint>> added;
+    for (const VertexObservation& o : reading.observations) {
+        VertexConstraint c;
+        c.stroke = stroke;
+        c.viewAxis = axis;
+        if (o.viewPlaneOnly) {
+            c.rows = 2;
+            c.A.topRows<2>() = P;
+            c.b.head<2>() = P * o.position;
+        } else {
+            c.rows = 3;
+            c.A = Eigen::Matrix3d::Identity();
+            c.b = o.position;
+        }
+        added.push_back({ o.vertex, c });
+    }
+    if (options.mirror) {
+        const MirrorMap& m = *options.mirror;
+        const Eigen::Matrix3d S = m.reflection();
+        const Eigen::Vector3d d = m.offset();
+        const size_t own = added.size();
+        for (size_t i = 0; i < own; ++i) {
+            const std::uint32_t target = m.partner(added[i].first);
+            if (target == MirrorMap::kNone || seen.count(target))
+                continue;
+            // A x = b for x, and x' = S x + d its mirror image: (A S) x' = b + A S d.
+            VertexConstraint c = added[i].second;
+            const Eigen::Matrix3d AS = c.A * S;
+            c.b += AS * d;
+            c.A = AS;
+            c.viewAxis = S * axis;
+            c.mirrored = true;
+            seen.insert(target);
+            added.push_back({ target, c });
+        }
+    }
+
+    // Step 1: supersede older constraints of similar views on the vertices the stroke maps to
+    // and near the line it drew (its projected points; the mapped vertices for a reading
+    // without them), measured in the stroke's view plane: what the user drew over.
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> drawn; // segments, world mm
+    if (reading.worldPoints.size() >= 2 && reading.worldPoints.front().allFinite()) {
+        for (size_t k = 1; k < reading.worldPoints.size(); ++k)
+            if (reading.worldPoints[k].allFinite() && reading.worldPoints[k - 1].allFinite())
+                drawn.push_back({ reading.worldPoints[k - 1], reading.worldPoints[k] });
+    } else {
+        for (const VertexObservation& o : reading.observations)
+            drawn.push_back({ next.face.segment<3>(3 * o.vertex), next.face.segment<3>(3 * o.vertex) });
+    }
+    if (options.mirror) {
+        const size_t own = drawn.size();
+        for (size_t k = 0; k < own; ++k)
+            drawn.push_back({ options.mirror->mirror(drawn[k].first), options.mirror->mirror(drawn[k].second) });
+    }
+    // Distances in the view plane (in 3D for a reading without a view).
+    const Eigen::Matrix3d measure = hasView ? Eigen::Matrix3d(P.transpose() * P) : Eigen::Matrix3d::Identity();
+    auto nearDrawn = [&](const Eigen::Vector3d& x) {
+        for (const auto& [a, b] : drawn) {
+            const Eigen::Vector3d d = measure * (b - a), q = measure * (x - a);
+            const double t = d.squaredNorm() > 0 ? std::clamp(q.dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+            if ((q - t * d).norm() <= options_.supersedeRadius)
+                return true;
+        }
+        return false;
+    };
+    std::vector<bool> mapsTo(next.constraints.size(), false);
+    for (const auto& [v, c] : added)
+        mapsTo[v] = true;
+    for (size_t v = 0; v < next.constraints.size(); ++v) {
+        auto& list = next.constraints[v];
+        if (list.empty() || !(mapsTo[v] || nearDrawn(next.face.segment<3>(3 * static_cast<Eigen::Index>(v)))))
+            continue;
+        std::erase_if(list, [&](const VertexConstraint& c) {
+            // A 3D constraint (or a stroke without a view) has no view to combine with.
+            return !hasView || c.rows == 3 || c.viewAxis.dot(axis) >= cosLimit;
+        });
+    }
+    // Step 2: add the new constraints. A vertex keeps one constraint per stroke.
+    for (const auto& [v, c] : added)
+        next.constraints[v].push_back(c);
+
+    // Step 3: rebuild.
+    stats::Observations obs;
+    for (size_t v = 0; v < next.constraints.size(); ++v)
+        addCombined(obs, static_cast<Eigen::Index>(v), next.constraints[v]);
+    stats::ReconstructOptions ro;
+    ro.cleanUp = options_.cleanUp;
+    ro.correlation = options.correlation ? options_.correlation : stats::Correlation::Off;
+    next.face = stats::reconstruct(model_, obs, ro).face;
+    if (!next.face.allFinite())
+        fail("tracking: the face model returned a non-finite face for this stroke");
+
+    // Step 4: project the constraints onto the face space.
+    if (options_.projectOntoFaceSpace)
+        for (size_t v = 0; v < next.constraints.size(); ++v)
+            for (VertexConstraint& c : next.constraints[v])
+                c.b.head(c.rows) = (c.A * next.face.segment<3>(3 * static_cast<Eigen::Index>(v))).head(c.rows);
+
+    history_.resize(current_ + 1);
+    history_.push_back(std::move(next));
+    current_ = history_.size() - 1;
+}
+
+bool TrackingModel::undo()
+{
+    if (current_ == 0)
+        return false;
+    --current_;
+    return true;
+}
+
+bool TrackingModel::redo()
+{
+    if (current_ + 1 >= history_.size())
+        return false;
+    ++current_;
+    return true;
+}
+
+} // namespace facesketch::sketch

@@ -1,0 +1,116 @@
+#pragma once
+// The tracking model (thesis 4.6.4, 4.7.3): what the strokes so far say about each vertex of the
+// face, and the face the face model infers from it.
+//
+// Per vertex the model holds either nothing (missing, the thesis' -1) or a set of linear
+// constraints A x = b on its position x (mm): three rows for a vertex a stroke pins in 3D, two
+// (the view's x and y rows) for one pinned only in a view's image plane. After each stroke:
+//   1. supersede (beyond the thesis, whose 4.7.3 and 4.10 name the problem): every constraint of
+//      an older stroke drawn from a similar view (view directions within `supersedeAngleDeg`)
+//      on a vertex the new stroke maps to, or whose current position lies within
+//      `supersedeRadius` mm of the line the new stroke drew (its projected points, measured in
+//      its view plane), is dropped, so oversketching a feature replaces it instead of averaging
+//      two shapes into a corrupt one, while a neighbouring feature drawn beside it stays;
+//   2. the new constraints are added; constraints from different views on one vertex combine
+//      (4.7.2): their rows are stacked, and the vertex is measured by the least-squares position
+//      (in 3D when the rows span 3D, else in the plane they span);
+//   3. the face is rebuilt by stats::reconstruct (correlation on or off per stroke, 4.6.4);
+//   4. the constraints are projected onto the face space (4.7.3): each one's b becomes A times
+//      the rebuilt vertex, so the next stroke starts from a structure the model can express.
+// Undo and redo restore the stored state after k strokes, so the state after k strokes is
+// bit-identical whether reached directly or by undoing later strokes.
+
+#include "core/mesh.h"
+#include "sketch/reading.h"
+#include "stats/face_model.h"
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+namespace facesketch::sketch {
+
+class MirrorMap;
+
+struct TrackingOptions {
+    /// Step 1: older constraints within this distance (mm, in the stroke's view plane) of the
+    /// line the stroke drew are superseded; 0 supersedes only the vertices the stroke maps to.
+    /// About a high-resolution edge: a redrawn line that lands on the neighbouring vertices
+    /// replaces the old one, while the inner and outer lip lines a few mm apart both stay.
+    double supersedeRadius = 2.0;
+    /// Step 1: only constraints of strokes whose view direction is within this angle (degrees)
+    /// of the new stroke's are superseded; those of other views combine with it.
+    double supersedeAngleDeg = 30.0;
+    /// Step 4 on or off (off keeps the stroke's own positions, as 4.6.4 alone).
+    bool projectOntoFaceSpace = true;
+    /// Clean-up of step 3 (the correlation is chosen per stroke).
+    bool cleanUp = true;
+    /// Correlation of step 3 when a stroke asks for it (Joint or Thesis).
+    stats::Correlation correlation = stats::Correlation::Joint;
+};
+
+/// One linear constraint block on one vertex: A x = b (rows orthonormal, 2 or 3 of them).
+struct VertexConstraint {
+    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();
+    int rows = 0;
+    int stroke = 0;                                      ///< 1-based number of the stroke that made it
+    Eigen::Vector3d viewAxis = Eigen::Vector3d::UnitZ(); ///< towards the viewer of that stroke
+    bool mirrored = false;                               ///< made by the symmetry option
+};
+
+/// How one stroke is applied.
+struct ApplyOptions {
+    bool correlation = true;
+    /// Mirror the observations through this map (sketch/symmetry.h) onto the other half,
+    /// where the stroke itself did not map; nullptr: no symmetry.
+    const MirrorMap* mirror = nullptr;
+};
+
+/// The whole tracked state after some strokes.
+struct TrackingState {
+    std::vector<std::vector<VertexConstraint>> constraints; ///< per vertex (empty: missing)
+    Eigen::VectorXd face;                                   ///< 3#V, mm: the rebuilt face
+    int strokes = 0;                                        ///< strokes applied
+};
+
+class TrackingModel {
+public:
+    /// Starts at the model's mean face with nothing observed. The model must outlive this.
+    explicit TrackingModel(const stats::FaceModel& model, const TrackingOptions& options = {});
+
+    /// Applies one stroke's reading (steps 1-4 above) and forgets any undone strokes. Throws
+    /// Error, leaving the state exactly as it was, for a reading with no observations, a vertex
+    /// outside the model or observed twice, a non-finite position, or a viewPlane whose rows
+    /// are not orthonormal when a viewPlaneOnly observation needs it.
+    void apply(const StrokeReading& reading, const ApplyOptions& options = {});
+
+    /// Returns to the state before the last applied stroke; false (and no change) if none.
+    bool undo();
+    /// Re-applies the last undone stroke's state; false (and no change) if none.
+    bool redo();
+
+    const TrackingState& state() const { return history_[current_]; }
+    const Eigen::VectorXd& face() const { return state().face; }
+    /// The current face as a mesh on the model's topology (#V by 3).
+    Mesh faceMesh() const;
+    int strokes() const { return state().strokes; }
+    /// Vertices with at least one constraint.
+    int observedVertices() const;
+    /// The measurements step 3 gives the face model (step 2's combination).
+    stats::Observations observations() const;
+
+    const stats::FaceModel& model() const { return model_; }
+    const TrackingOptions& options() const { return options_; }
+
+private:
+    const stats::FaceModel& model_;
+    TrackingOptions options_;
+    std::vector<TrackingState> history_; ///< history_[k]: the state after k strokes
+    size_t current_ = 0;
+};
+
+/// The measurement of one vertex from its constraints (step 2): appended to `observations`.
+void addCombined(stats::Observations& observations, Eigen::Index vertex, const std::vector<VertexConstraint>& constraints);
+
+} // namespace facesketch::sketch

@@ -1,0 +1,76 @@
+// eval strokes on a small trained model: records per (view, mapper), sketching helps, and all
+// views together help more than one; bad input is refused.
+#include "evaluation/stroke_eval.h"
+
+#include "core/error.h"
+#include "evaluation/contour_eval.h"
+#include "model/trained.h"
+
+using namespace facesketch;
+
+namespace {
+
+evaluation::StrokeEvalData smallData()
+{
+    const auto& t = test::trainedSynth();
+    const dataset::Component& skin = *t.dataset.manifest.component("skin");
+    const Triangles F = model::skinTriangles(t.dataset.manifest);
+    evaluation::StrokeEvalData d;
+    d.model = &t.model;
+    d.flags = evaluation::skinContourFlags(t.dataset.manifest);
+    d.contours = sketch::skinContours(t.dataset.manifest.contours, skin.begin, skin.end);
+    for (dataset::Role role : { dataset::Role::Train, dataset::Role::Contour }) {
+        const Eigen::MatrixXd rows = dataset::loadShapes(t.dataset, role, "skin");
+        for (Eigen::Index i = 0; i < rows.rows(); ++i)
+            d.candidateFaces.push_back({ dataset::unflatten(rows.row(i)), F });
+    }
+    for (Eigen::Index i = 0; i < 3; ++i) {
+        d.testFaces.push_back({ dataset::unflatten(t.testSkin.row(i)), F });
+        d.testNames.push_back("test" + std::to_string(i));
+    }
+    return d;
+}
+
+} // namespace
+
+TEST_CASE("stroke_eval: sketching test faces with their own strokes beats the mean face, all views more than one")
+{
+    const evaluation::StrokeEvalData d = smallData();
+    evaluation::StrokeEvalOptions o;
+    o.views = { { "front", { 0, 0 } }, { "profile", { 90, 0 } } };
+    o.mappers = { sketch::MapperKind::Nearest };
+    o.keepFaces = 1;
+    const evaluation::StrokeEvalResult r = evaluation::evaluateStrokes(test::device(), d, o);
+    REQUIRE(r.records.size() == 3);
+    REQUIRE(r.records[0].view == "front");
+    REQUIRE(r.records[2].view == "all");
+    for (const auto& rec : r.records) {
+        INFO(rec.view << ": " << rec.meanMm << " mm, mean face " << rec.meanFaceMm << " mm, ratio " << rec.ratio);
+        REQUIRE(rec.mapper == "nearest");
+        REQUIRE(rec.faces == 3);
+        REQUIRE(rec.noisePx == 1.0);
+        REQUIRE(rec.failed == 0);
+        REQUIRE(rec.strokes > 3 * 3);
+        REQUIRE(rec.ratio == Approx(rec.meanMm / rec.meanFaceMm));
+        REQUIRE(rec.ratio < 1.0);
+    }
+    REQUIRE(r.records[2].ratio < std::min(r.records[0].ratio, r.records[1].ratio));
+    REQUIRE(r.records[2].strokes == r.records[0].strokes + r.records[1].strokes);
+    REQUIRE(r.kept.size() == 3); // face 0 in front, profile and all
+    REQUIRE(r.kept[0].vertexError.mean() == Approx(r.kept[0].meanMm));
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("stroke_eval: no test faces, no mappers or another topology are refused")
+{
+    evaluation::StrokeEvalData d = smallData();
+    evaluation::StrokeEvalOptions o;
+    o.mappers.clear();
+    REQUIRE_THROWS_WITH(evaluation::evaluateStrokes(test::device(), d, o), Catch::Contains("one mapper"));
+    o = {};
+    d.testFaces.back().V.conservativeResize(d.testFaces.back().V.rows() - 1, 3);
+    REQUIRE_THROWS_WITH(evaluation::evaluateStrokes(test::device(), d, o), Catch::Contains("test2") && Catch::Contains("topology"));
+    d.testFaces.clear();
+    d.testNames.clear();
+    REQUIRE_THROWS_WITH(evaluation::evaluateStrokes(test::device(), d, o), Catch::Contains("test faces"));
+}

@@ -1,0 +1,295 @@
+#include "sketch/mapper.h"
+
+#include "core/error.h"
+#include "fixture.h"
+#include "geometry/graph.h"
+#include "test_common.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <set>
+
+using namespace facesketch;
+using namespace facesketch::sketch;
+
+namespace {
+
+// The screen trace of a vertex path of `face` in a front view of 512 x 512.
+Stroke traceOf(const Mesh& face, const std::vector<int>& path, ViewAngles angles = { 0, 0 })
+{
+    Stroke s;
+    s.view = frameMeshView(face, angles, 512, 512);
+    const Camera camera = orbitCamera(s.view);
+    for (int v : path) {
+        const glm::dvec3 p = camera.project(glm::dvec3(face.V(v, 0), face.V(v, 1), face.V(v, 2)));
+        s.points.push_back({ p.x, p.y, std::nullopt });
+    }
+    return s;
+}
+
+// Share of the observed vertices within `hops` of the path, and share of the path observed.
+std::pair<double, double> overlap(const StrokeReading& r, const std::vector<int>& path, const RingDistances& rings, int hops)
+{
+    int near = 0;
+    std::set<int> covered;
+    for (const VertexObservation& o : r.observations) {
+        int best = 1000;
+        for (int v : path) {
+            const int h = rings.hops(o.vertex, static_cast<std::uint32_t>(v));
+            if (h >= 0 && h < best)
+                best = h;
+        }
+        near += best <= hops;
+        if (best == 0)
+            covered.insert(static_cast<int>(o.vertex));
+    }
+    return { static_cast<double>(near) / std::max<std::size_t>(r.observations.size(), 1),
+        static_cast<double>(covered.size()) / path.size() };
+}
+
+void checkWellFormed(const StrokeReading& r, Eigen::Index vertexCount)
+{
+    REQUIRE(r.screenPoints.size() == r.worldPoints.size());
+    REQUIRE(r.candidateCounts.size() == r.screenPoints.size());
+    REQUIRE(r.chosen.size() == r.screenPoints.size());
+    std::set<std::uint32_t> seen;
+    int lastPoint = -1;
+    for (const VertexObservation& o : r.observations) {
+        REQUIRE(o.vertex < vertexCount);
+        REQUIRE(seen.insert(o.vertex).second); // at most one per vertex
+        REQUIRE(o.strokePoint >= lastPoint);   // in stroke order
+        lastPoint = o.strokePoint;
+        REQUIRE(o.strokePoint < static_cast<int>(r.screenPoints.size()));
+        REQUIRE(r.candidateCounts[static_cast<std::size_t>(o.strokePoint)] > 0);
+        REQUIRE(o.position.allFinite());
+    }
+}
+
+} // namespace
+
+TEST_CASE("mapper: mapper names round-trip and unknown names are refused")
+{
+    for (MapperKind k : { MapperKind::Nearest, MapperKind::Heuristic, MapperKind::Hmm, MapperKind::Simple })
+        CHECK(parseMapper(mapperName(k)) == k);
+    REQUIRE_THROWS_WITH(parseMapper("closest"), Catch::Contains("'closest'"));
+    MapperParams p;
+    p.sigmaC = 0;
+    REQUIRE_THROWS_WITH(p.validate(), Catch::Contains("sigmaC = 0"));
+}
+
+TEST_CASE("mapper: a stroke traced along the mean face's upper lip maps to the upper lip")
+{
+    const test::SketchWorld& w = test::sketchWorld();
+    StrokeReader reader(test::device(), w.model, w.candidateFaces, w.flags);
+    const std::vector<int>& lip = w.contours.at("lip_upper_outer");
+    const Stroke stroke = traceOf(w.mean, lip);
+    const RingDistances rings(w.model.triangles, w.model.vertexCount(), 4);
+    for (MapperKind kind : { MapperKind::Nearest, MapperKind::Heuristic, MapperKind::Hmm, MapperKind::Simple }) {
+        const StrokeReading r = reader.read(stroke, w.mean, kind);
+        checkWellFormed(r, w.model.vertexCount());
+        const auto [nearShare, covered] = overlap(r, lip, rings, 1);
+        std::cout << mapperName(kind) << ": " << r.screenPoints.size() << " points, " << r.observations.size() << " vertices, " << nearShare
+                  << " within one ring of the lip, " << covered << " of the lip covered, " << reader.lastTiming().candidatesMs << " + "
+                  << reader.lastTiming().mappingMs << " ms\n";
+        INFO(mapperName(kind));
+        CHECK(r.message.empty());
+        CHECK(r.observations.size() >= lip.size() / 2);
+        CHECK(covered >= 0.5);
+        if (kind == MapperKind::Nearest) {
+            // The baseline: every point on its nearest candidate, wherever that vertex lies.
+            for (std::size_t i = 0; i < r.chosen.size(); ++i)
+                if (r.candidateCounts[i] > 0)
+                    CHECK(r.chosen[i] >= 0);
+        } else {
+            CHECK(nearShare >= 0.9);
+        }
+        // Every observation lies under the stroke: its image is a stroke point.
+        const Camera camera = orbitCamera(stroke.view);
+        for (const VertexObservation& o : r.observations) {
+            const glm::dvec3 s = camera.project(glm::dvec3(o.position.x(), o.position.y(), o.position.z()));
+            const Eigen::Vector2d& p = r.screenPoints[static_cast<std::size_t>(o.strokePoint)];
+            if (kind != MapperKind::Nearest && kind != MapperKind::Simple) {
+                CHECK(s.x == Approx(p.x()).margin(1e-6));
+                CHECK(s.y == Approx(p.y()).margin(1e-6));
+            }
+        }
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("mapper: bad strokes are refused by name and odd ones give well-defined readings, with every mapper")
+{
+    const test::SketchWorld& w = test::sketchWorld();
+    StrokeReader reader(test::device(), w.model, w.candidateFaces, w.flags);
+    const std::vector<int>& lip = w.contours.at("lip_upper_outer");
+    const Stroke good = traceOf(w.mean, lip);
+    const Mesh before = w.mean;
+    for (MapperKind kind : { MapperKind::Nearest, MapperKind::Heuristic, MapperKind::Hmm, MapperKind::Simple }) {
+        INFO(mapperName(kind));
+        // Refused, naming what is wrong.
+        Stroke empty = good;
+        empty.points.clear();
+        REQUIRE_THROWS_WITH(reader.read(empty, w.mean, kind), Catch::Contains("no points"));
+        Stroke nan = good;
+        nan.points[4].x = std::nan("");
+        REQUIRE_THROWS_WITH(reader.read(nan, w.mean, kind), Catch::Contains("point 4 has x = nan"));
+        Stroke inf = good;
+        inf.points[2].y = -INFINITY;
+        REQUIRE_THROWS_WITH(reader.read(inf, w.mean, kind), Catch::Contains("point 2 has y = -inf"));
+        Mesh wrong = w.mean;
+        wrong.V.conservativeResize(wrong.V.rows() - 1, 3);
+        REQUIRE_THROWS_WITH(reader.read(good, wrong, kind), Catch::Contains("current face has"));
+        MapperParams bad;
+        bad.sigmaStroke = -1;
+        REQUIRE_THROWS_WITH(reader.read(good, w.mean, kind, bad), Catch::Contains("sigmaStroke = -1"));
+
+        // One point on the lip: at most one vertex, from that point.
+        Stroke one = good;
+        one.points = { good.points[lip.size() / 2] };
+        const StrokeReading r1 = reader.read(one, w.mean, kind);
+        checkWellFormed(r1, w.model.vertexCount());
+        CHECK(r1.screenPoints.size() == 1);
+        CHECK(r1.observations.size() == 1);
+
+        // Zero length: many copies of one point read as that point.
+        Stroke still = one;
+        still.points.assign(20, one.points[0]);
+        const StrokeReading r0 = reader.read(still, w.mean, kind);
+        checkWellFormed(r0, w.model.vertexCount());
+        CHECK(r0.observations.size() == 1);
+
+        // Far off screen: nothing read, and said so.
+        Stroke far = good;
+        for (StrokePoint& p : far.points)
+            p.x += 1e9;
+        const StrokeReading rf = reader.read(far, w.mean, kind);
+        checkWellFormed(rf, w.model.vertexCount());
+        CHECK(rf.observations.empty());
+        CHECK_THAT(rf.message, Catch::Contains("no point of the stroke lies on screen"));
+        // Partly far off: the on-screen part is read.
+        Stroke partly = good;
+        partly.points.push_back({ 1e12, -1e12, std::nullopt });
+        const StrokeReading rp = reader.read(partly, w.mean, kind);
+        checkWellFormed(rp, w.model.vertexCount());
+        CHECK(rp.observations.size() >= lip.size() / 2);
+        CHECK_THAT(rp.message, Catch::Contains("no contour candidate"));
+
+        // Over empty background (the viewport's corner): nothing read, and said so.
+        Stroke corner = good;
+        corner.points = { { 3, 3, std::nullopt }, { 40, 8, std::nullopt }, { 60, 30, std::nullopt } };
+        const StrokeReading rc = reader.read(corner, w.mean, kind);
+        checkWellFormed(rc, w.model.vertexCount());
+        CHECK(rc.observations.empty());
+        CHECK_THAT(rc.message, Catch::Contains("no contour candidate") && Catch::Contains("misses the face"));
+
+        // A self-crossing scribble over the mouth: read, one observation per vertex at most.
+        Stroke scribble = good;
+        scribble.points.clear();
+        const StrokePoint c = one.points[0];
+        for (int k = 0; k <= 200; ++k) {
+            const double t = k * 0.1;
+            scribble.points.push_back({ c.x + 30 * std::sin(t), c.y + 15 * std::sin(2 * t), std::nullopt });
+        }
+        const StrokeReading rs = reader.read(scribble, w.mean, kind);
+        checkWellFormed(rs, w.model.vertexCount());
+        CHECK(!rs.observations.empty());
+
+        // 10,000 points along the lip (dense): read like the lip itself.
+        Stroke dense = good;
+        dense.points.clear();
+        for (int k = 0; k < 10000; ++k) {
+            const double t = k / 9999.0 * (lip.size() - 1);
+            const std::size_t a = std::min(static_cast<std::size_t>(t), lip.size() - 2);
+            const double f = t - a;
+            dense.points.push_back({ (1 - f) * good.points[a].x + f * good.points[a + 1].x,
+                (1 - f) * good.points[a].y + f * good.points[a + 1].y, std::nullopt });
+        }
+        const StrokeReading rd = reader.read(dense, w.mean, kind);
+        checkWellFormed(rd, w.model.vertexCount());
+        CHECK(rd.screenPoints.size() == 10000);
+        CHECK(rd.observations.size() >= lip.size() / 2);
+        CHECK(reader.lastTiming().mappingMs < 5000);
+    }
+    // The caller's face is untouched.
+    REQUIRE(w.mean.V == before.V);
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("mapper: options: the open border's silhouette dropped, view-plane-only observations, the face's own contours")
+{
+    const test::SketchWorld& w = test::sketchWorld();
+    StrokeReader reader(test::device(), w.model, w.candidateFaces, w.flags);
+    // The open border of the skin (edges of one triangle), ordered by angle around the face's
+    // centre in the front view: a stroke along the mask's outline.
+    std::map<std::pair<int, int>, int> uses;
+    for (Eigen::Index t = 0; t < w.model.triangles.rows(); ++t)
+        for (int c = 0; c < 3; ++c) {
+            const int a = w.model.triangles(t, c), b = w.model.triangles(t, (c + 1) % 3);
+            ++uses[{ std::min(a, b), std::max(a, b) }];
+        }
+    std::set<int> border;
+    for (const auto& [e, n] : uses)
+        if (n == 1) {
+            border.insert(e.first);
+            border.insert(e.second);
+        }
+    REQUIRE(border.size() > 20);
+    const Eigen::RowVector3d centre = w.mean.V.colwise().mean();
+    std::vector<std::pair<double, int>> around;
+    for (int v : border)
+        if (w.mean.V(v, 1) < centre.y()) // the lower half: jaw and neck line
+            around.push_back({ std::atan2(w.mean.V(v, 1) - centre.y(), w.mean.V(v, 0) - centre.x()), v });
+    std::sort(around.begin(), around.end());
+    std::vector<int> path;
+    for (const auto& [angle, v] : around)
+        path.push_back(v);
+    const Stroke outline = traceOf(w.mean, path);
+
+    MapperParams keep, drop;
+    drop.borderRings = 2;
+    for (MapperKind kind : { MapperKind::Nearest, MapperKind::Hmm }) {
+        INFO(mapperName(kind));
+        const StrokeReading all = reader.read(outline, w.mean, kind, keep);
+        const StrokeReading culled = reader.read(outline, w.mean, kind, drop);
+        int borderAll = 0, borderCulled = 0;
+        for (const auto& o : all.observations)
+            borderAll += border.count(static_cast<int>(o.vertex)) && !(w.flags[o.vertex] & VertexLabelled);
+        for (const auto& o : culled.observations)
+            borderCulled += border.count(static_cast<int>(o.vertex)) && !(w.flags[o.vertex] & VertexLabelled);
+        std::cout << mapperName(kind) << ": " << borderAll << " of " << all.observations.size() << " observations on the open border, "
+                  << borderCulled << " of " << culled.observations.size() << " with borderRings 2\n";
+        CHECK(borderAll > 0);
+        CHECK(borderCulled < borderAll);
+        long countAll = 0, countCulled = 0;
+        for (std::size_t i = 0; i < all.candidateCounts.size(); ++i) {
+            countAll += all.candidateCounts[i];
+            countCulled += culled.candidateCounts[i];
+        }
+        CHECK(countCulled < countAll);
+    }
+
+    const std::vector<int>& lip = w.contours.at("lip_upper_outer");
+    const Stroke stroke = traceOf(w.mean, lip);
+    MapperParams planeOnly;
+    planeOnly.viewPlaneOnly = true;
+    const StrokeReading r = reader.read(stroke, w.mean, MapperKind::Hmm, planeOnly);
+    REQUIRE(!r.observations.empty());
+    for (const auto& o : r.observations)
+        CHECK(o.viewPlaneOnly);
+    for (const auto& o : reader.read(stroke, w.mean, MapperKind::Hmm).observations)
+        CHECK_FALSE(o.viewPlaneOnly);
+
+    // With the current face's own contours (here the mean face, whose labelled lip lies exactly
+    // under the stroke) among the candidates, the HMM maps onto the lip's own vertices.
+    MapperParams own;
+    own.ownContours = true;
+    const StrokeReading ro = reader.read(stroke, w.mean, MapperKind::Hmm, own);
+    checkWellFormed(ro, w.model.vertexCount());
+    const RingDistances rings(w.model.triangles, w.model.vertexCount(), 4);
+    const auto [nearShare, covered] = overlap(ro, lip, rings, 0);
+    CHECK(nearShare >= 0.9);
+    CHECK(covered >= 0.8);
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}

@@ -1,0 +1,208 @@
+// The session file (docs/session-format.md): exact round trips, atomic saves, and a message
+// naming the JSON path of every bad field.
+#include "sketch/session.h"
+
+#include "core/error.h"
+#include "test_common.h"
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+using namespace facesketch;
+using namespace facesketch::sketch;
+namespace fs = std::filesystem;
+
+namespace {
+
+Session example()
+{
+    Session s;
+    s.model = "faces.model";
+    s.dataset = "../data/faces";
+    for (int a = 0; a < 3; ++a) {
+        StrokeAction action;
+        action.stroke.view = frameSphereView({ 0.1, -2.0 / 3.0, 1e-300 }, 101.7, { 45.0 * a, -7.25 }, 1024, 768);
+        action.stroke.view.kind = a == 1 ? Projection::Perspective : Projection::Orthographic;
+        action.stroke.surface = a == 2 ? Surface::ProfilePlane : Surface::Face;
+        for (int i = 0; i < 5; ++i) {
+            StrokePoint p;
+            p.x = 100.0 / 3.0 + i * 0.1;
+            p.y = 512.0 - std::sqrt(2.0) * i;
+            if (a != 1)
+                p.timeMs = i * 16.6666666666667;
+            action.stroke.points.push_back(p);
+        }
+        action.reading.mapper = sessionMapperNames()[static_cast<size_t>(a)];
+        action.reading.correlation = a != 0;
+        action.reading.symmetry = a == 2;
+        s.actions.push_back(action);
+    }
+    return s;
+}
+
+std::string fileText(const fs::path& p)
+{
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// The message of parsing `text`, or "" if it parses.
+std::string messageOf(const std::string& text)
+{
+    try {
+        (void)parseSession(text, "s.json");
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+} // namespace
+
+TEST_CASE("session: save and load round trip exactly, and saving again gives the same bytes")
+{
+    test::TempDir dir;
+    const Session s = example();
+    saveSession(dir / "s.json", s);
+    const Session back = loadSession(dir / "s.json");
+    REQUIRE(back == s);
+    REQUIRE(back.actions[0].stroke.points[1].x == s.actions[0].stroke.points[1].x);
+    REQUIRE(back.actions[0].stroke.view.target.z == 1e-300);
+    REQUIRE_FALSE(back.actions[1].stroke.points[0].timeMs.has_value());
+    saveSession(dir / "t.json", back);
+    REQUIRE(fileText(dir / "s.json") == fileText(dir / "t.json"));
+    // Strings hold the field names of docs/session-format.md.
+    const auto doc = nlohmann::json::parse(fileText(dir / "s.json"));
+    REQUIRE(doc["format"] == "facesketch-session");
+    REQUIRE(doc["version"] == 1);
+    REQUIRE(doc["actions"][2]["stroke"]["surface"] == "profile-plane");
+}
+
+TEST_CASE("session: a truncated or empty file names the file")
+{
+    test::TempDir dir;
+    saveSession(dir / "s.json", example());
+    const std::string text = fileText(dir / "s.json");
+    test::writeText(dir / "cut.json", text.substr(0, text.size() / 2));
+    REQUIRE_THROWS_WITH(loadSession(dir / "cut.json"), Catch::Contains("cut.json") && Catch::Contains("truncated"));
+    test::writeText(dir / "empty.json", "");
+    REQUIRE_THROWS_WITH(loadSession(dir / "empty.json"), Catch::Contains("empty.json"));
+    REQUIRE_THROWS_WITH(loadSession(dir / "none.json"), Catch::Contains("none.json") && Catch::Contains("cannot open"));
+}
+
+TEST_CASE("session: a wrong format or version is refused")
+{
+    auto doc = nlohmann::json::parse(sessionToJson(example()));
+    doc["version"] = 2;
+    REQUIRE_THAT(messageOf(doc.dump()), Catch::StartsWith("s.json: version: ") && Catch::Contains("found 2"));
+    doc["version"] = "1";
+    REQUIRE_THAT(messageOf(doc.dump()), Catch::StartsWith("s.json: version: "));
+    doc["version"] = 1;
+    doc["format"] = "facesketch-dataset";
+    REQUIRE_THAT(messageOf(doc.dump()), Catch::StartsWith("s.json: format: "));
+    doc.erase("format");
+    REQUIRE_THAT(messageOf(doc.dump()), Catch::StartsWith("s.json: format: missing"));
+    REQUIRE_THAT(messageOf("[1, 2]"), Catch::Contains("expected an object"));
+}
+
+TEST_CASE("session: a missing model or dataset is named by sessionInputs")
+{
+    test::TempDir dir;
+    Session s = example();
+    saveSession(dir / "s.json", s);
+    REQUIRE_THROWS_WITH(sessionInputs(loadSession(dir / "s.json"), dir / "s.json"),
+        Catch::Contains("s.json: model: no model file at") && Catch::Contains("faces.model"));
+    test::writeText(dir / "faces.model", "x");
+    REQUIRE_THROWS_WITH(sessionInputs(loadSession(dir / "s.json"), dir / "s.json"), Catch::Contains("s.json: dataset: no dataset"));
+    fs::create_directories(dir / ".." / "data" / "faces");
+    s.dataset = "data";
+    fs::create_directories(dir / "data");
+    test::writeText(dir / "data" / "manifest.json", "{}");
+    saveSession(dir / "s.json", s);
+    const auto [model, dataset] = sessionInputs(loadSession(dir / "s.json"), dir / "s.json");
+    REQUIRE(model == dir / "faces.model");
+    REQUIRE(dataset == dir / "data");
+}
+
+TEST_CASE("session: every bad field is named by its JSON path")
+{
+    using nlohmann::json;
+    const json good = json::parse(sessionToJson(example()));
+    REQUIRE(messageOf(good.dump()).empty());
+    struct Case {
+        std::string pointer; // where to change the document (JSON pointer)
+        json value;
+        std::string path; // what the message must name
+    };
+    const std::vector<Case> cases = {
+        { "/model", 3, "model: expected a string" },
+        { "/model", "", "model: empty path" },
+        { "/dataset", nullptr, "dataset: expected a string" },
+        { "/actions", json::object(), "actions: expected an array" },
+        { "/actions/1/type", "pose", "actions[1].type: expected \"stroke\"" },
+        { "/actions/1/extra", 1, "actions[1].extra: unknown field" },
+        { "/actions/0/stroke/points/1/x", "a", "actions[0].stroke.points[1].x: expected a number" },
+        { "/actions/0/stroke/points/1/y", nullptr, "actions[0].stroke.points[1].y: expected a number" },
+        { "/actions/0/stroke/points/3/t", -1.0, "actions[0].stroke.points[3].t: a time in ms" },
+        { "/actions/0/stroke/points/3/t", 1.0, "actions[0].stroke.points[3].t: goes backwards" },
+        { "/actions/1/stroke/points/2/t", 1.0, "actions[1].stroke.points[2]: either every point" },
+        { "/actions/0/stroke/points/4/z", 1.0, "actions[0].stroke.points[4].z: unknown field" },
+        { "/actions/0/stroke/points", json::array(), "actions[0].stroke.points: a stroke needs at least one point" },
+        { "/actions/0/stroke/view/target", json::array({ 1, 2 }), "actions[0].stroke.view.target: expected 3 numbers" },
+        { "/actions/0/stroke/view/target/2", "z", "actions[0].stroke.view.target[2]: expected a number" },
+        { "/actions/0/stroke/view/azimuth", true, "actions[0].stroke.view.azimuth: expected a number" },
+        { "/actions/0/stroke/view/elevation", 95.0, "actions[0].stroke.view.elevation: must lie in [-90, 90]" },
+        { "/actions/2/stroke/view/distance", 0.0, "actions[2].stroke.view.distance: must be positive" },
+        { "/actions/0/stroke/view/projection", "fisheye", "actions[0].stroke.view.projection: expected \"orthographic\"" },
+        { "/actions/0/stroke/view/half_height", -1.0, "actions[0].stroke.view.half_height: must be positive" },
+        { "/actions/0/stroke/view/fov_y", 4.0, "actions[0].stroke.view.fov_y: must be below pi" },
+        { "/actions/0/stroke/view/near", 0.0, "actions[0].stroke.view.near: must be positive" },
+        { "/actions/0/stroke/view/far", 0.5, "actions[0].stroke.view.far: must exceed near" },
+        { "/actions/0/stroke/view/width", 0, "actions[0].stroke.view.width: must lie in [1, 32768]" },
+        { "/actions/0/stroke/view/height", 7.5, "actions[0].stroke.view.height: expected an integer" },
+        { "/actions/0/stroke/surface", "wall", "actions[0].stroke.surface: " },
+        { "/actions/0/reading/mapper", "best", "actions[0].reading.mapper: expected nearest" },
+        { "/actions/0/reading/correlation", 1, "actions[0].reading.correlation: expected true or false" },
+        { "/actions/2/reading/symmetry", "yes", "actions[2].reading.symmetry: expected true or false" },
+    };
+    for (const Case& c : cases) {
+        json doc = good;
+        doc[json::json_pointer(c.pointer)] = c.value;
+        INFO(c.pointer);
+        REQUIRE_THAT(messageOf(doc.dump()), Catch::StartsWith("s.json: " + c.path));
+    }
+    for (const std::string field : { "/actions/0/stroke/view", "/actions/1/reading", "/actions/2/stroke/surface" }) {
+        json doc = good;
+        doc[json::json_pointer(field.substr(0, field.rfind('/')))].erase(field.substr(field.rfind('/') + 1));
+        INFO(field);
+        REQUIRE_THAT(messageOf(doc.dump()), Catch::Contains("missing"));
+    }
+    // Infinity cannot be written in JSON; an overflowing literal is refused with its text.
+    std::string text = good.dump();
+    const std::string x = "\"x\":" + good["actions"][0]["stroke"]["points"][0]["x"].dump();
+    REQUIRE(text.find(x) != std::string::npos);
+    text.replace(text.find(x), x.size(), "\"x\":1e999");
+    REQUIRE_THAT(messageOf(text), Catch::StartsWith("s.json: not a valid session document") && Catch::Contains("1e999"));
+}
+
+TEST_CASE("session: saving a bad session throws naming the field and leaves the old file")
+{
+    test::TempDir dir;
+    saveSession(dir / "s.json", example());
+    const std::string before = fileText(dir / "s.json");
+    Session bad = example();
+    bad.actions[1].stroke.points[2].y = std::numeric_limits<double>::quiet_NaN();
+    REQUIRE_THROWS_WITH(saveSession(dir / "s.json", bad), Catch::Contains("actions[1].stroke.points[2].y"));
+    bad = example();
+    bad.actions[0].reading.mapper = "fastest";
+    REQUIRE_THROWS_WITH(saveSession(dir / "s.json", bad), Catch::Contains("actions[0].reading.mapper"));
+    bad = example();
+    bad.actions[0].stroke.view.width = 0;
+    REQUIRE_THROWS_WITH(saveSession(dir / "s.json", bad), Catch::Contains("actions[0].stroke.view.width"));
+    REQUIRE(fileText(dir / "s.json") == before);
+    for (const auto& entry : fs::directory_iterator(dir.path()))
+        REQUIRE(entry.path().filename() == "s.json"); // no temporary left behind
+}

@@ -1,0 +1,302 @@
+// The tracking model (thesis 4.6.4, 4.7.3) on a small trained model with hand-made readings:
+// exact undo, oversketching, multi-view combination, symmetry and bad input.
+#include "sketch/tracking.h"
+
+#include "core/error.h"
+#include "model/head_model.h"
+#include "model/trained.h"
+#include "sketch/simulate.h"
+#include "sketch/symmetry.h"
+
+using namespace facesketch;
+using namespace facesketch::sketch;
+
+namespace {
+
+const Eigen::Matrix<double, 2, 3> kFront = (Eigen::Matrix<double, 2, 3>() << 1, 0, 0, 0, 1, 0).finished();
+// Seen from the face's left (camera on +x): screen x along -z, y up.
+const Eigen::Matrix<double, 2, 3> kProfile = (Eigen::Matrix<double, 2, 3>() << 0, 0, -1, 0, 1, 0).finished();
+
+// The skin vertices of the labelled contours whose name starts with `prefix`.
+std::vector<std::uint32_t> contourVertices(const std::string& prefix)
+{
+    const auto& t = test::trainedSynth();
+    const dataset::Component& skin = *t.dataset.manifest.component("skin");
+    std::vector<std::uint32_t> out;
+    for (const auto& [name, path] : skinContours(t.dataset.manifest.contours, skin.begin, skin.end))
+        if (name.rfind(prefix, 0) == 0)
+            for (int v : path)
+                if (std::find(out.begin(), out.end(), static_cast<std::uint32_t>(v)) == out.end())
+                    out.push_back(static_cast<std::uint32_t>(v));
+    return out;
+}
+
+// A reading that pins `vertices` where test face `face` has them (in the view plane of P, or in
+// 3D when P is zero), shifted by `offset` mm.
+StrokeReading reading(const std::vector<std::uint32_t>& vertices, int face, const Eigen::Matrix<double, 2, 3>& P,
+    const Eigen::Vector3d& offset = Eigen::Vector3d::Zero())
+{
+    const auto& t = test::trainedSynth();
+    StrokeReading r;
+    r.viewPlane = P;
+    const bool plane = !P.isZero();
+    for (size_t i = 0; i < vertices.size(); ++i) {
+        VertexObservation o;
+        o.vertex = vertices[i];
+        o.position = t.testSkin.row(face).segment<3>(3 * vertices[i]).transpose() + offset;
+        o.viewPlaneOnly = plane;
+        o.strokePoint = static_cast<int>(i);
+        r.observations.push_back(o);
+    }
+    return r;
+}
+
+double meanError(const Eigen::VectorXd& face, int testFace, const std::vector<std::uint32_t>& vertices)
+{
+    const auto& t = test::trainedSynth();
+    double sum = 0;
+    for (std::uint32_t v : vertices)
+        sum += (face.segment<3>(3 * v) - t.testSkin.row(testFace).segment<3>(3 * v).transpose()).norm();
+    return sum / static_cast<double>(vertices.size());
+}
+
+bool sameState(const TrackingState& a, const TrackingState& b)
+{
+    if (a.strokes != b.strokes || a.face.size() != b.face.size() || a.constraints.size() != b.constraints.size())
+        return false;
+    // Bitwise: undo must restore, not recompute approximately.
+    if (std::memcmp(a.face.data(), b.face.data(), sizeof(double) * static_cast<size_t>(a.face.size())) != 0)
+        return false;
+    for (size_t v = 0; v < a.constraints.size(); ++v) {
+        if (a.constraints[v].size() != b.constraints[v].size())
+            return false;
+        for (size_t i = 0; i < a.constraints[v].size(); ++i) {
+            const VertexConstraint &x = a.constraints[v][i], &y = b.constraints[v][i];
+            if (x.rows != y.rows || x.stroke != y.stroke || x.A != y.A || x.b != y.b || x.mirrored != y.mirrored)
+                return false;
+        }
+    }
+    return true;
+}
+
+} // namespace
+
+TEST_CASE("tracking: starts at the mean face with nothing observed")
+{
+    const auto& t = test::trainedSynth();
+    const TrackingModel tracking(t.model);
+    REQUIRE(tracking.face() == t.model.meanFace);
+    REQUIRE(tracking.strokes() == 0);
+    REQUIRE(tracking.observedVertices() == 0);
+    REQUIRE(tracking.faceMesh().V.rows() == t.model.vertexCount());
+}
+
+TEST_CASE("tracking: a stroke moves the face towards the face it traces")
+{
+    const auto& t = test::trainedSynth();
+    const auto lips = contourVertices("lip");
+    REQUIRE(lips.size() >= 8);
+    TrackingModel tracking(t.model);
+    tracking.apply(reading(lips, 0, kFront));
+    REQUIRE(tracking.strokes() == 1);
+    REQUIRE(tracking.observedVertices() == static_cast<int>(lips.size()));
+    const double before = meanError(t.model.meanFace, 0, lips);
+    const double after = meanError(tracking.face(), 0, lips);
+    INFO("lip error " << before << " mm -> " << after << " mm");
+    REQUIRE(after < 0.6 * before);
+}
+
+TEST_CASE("tracking: undo is exact, the state after k strokes is the same reached directly or by undoing")
+{
+    const auto& t = test::trainedSynth();
+    const auto lips = contourVertices("lip"), brows = contourVertices("eyebrow"), eyes = contourVertices("eye_socket");
+    REQUIRE(!brows.empty());
+    REQUIRE(!eyes.empty());
+    const std::vector<StrokeReading> strokes
+        = { reading(lips, 1, kFront), reading(brows, 1, kProfile), reading(eyes, 2, kFront), reading(lips, 3, kFront) };
+
+    std::vector<TrackingState> direct; // direct[k]: the state after k strokes from scratch
+    for (size_t k = 0; k <= strokes.size(); ++k) {
+        TrackingModel fresh(t.model);
+        for (size_t i = 0; i < k; ++i)
+            fresh.apply(strokes[i]);
+        direct.push_back(fresh.state());
+    }
+    REQUIRE_FALSE(sameState(direct[3], direct[4])); // the last stroke changes something
+
+    TrackingModel tracking(t.model);
+    REQUIRE_FALSE(tracking.undo());
+    for (const StrokeReading& s : strokes)
+        tracking.apply(s);
+    REQUIRE(sameState(tracking.state(), direct[4]));
+    for (int k = 3; k >= 0; --k) {
+        REQUIRE(tracking.undo());
+        REQUIRE(sameState(tracking.state(), direct[static_cast<size_t>(k)]));
+    }
+    REQUIRE_FALSE(tracking.undo());
+    REQUIRE(tracking.redo());
+    REQUIRE(tracking.redo());
+    REQUIRE(sameState(tracking.state(), direct[2]));
+    // A new stroke after undoing forgets the undone ones.
+    tracking.apply(strokes[2]);
+    REQUIRE(sameState(tracking.state(), direct[3]));
+    REQUIRE_FALSE(tracking.redo());
+}
+
+TEST_CASE("tracking: oversketching a feature replaces it instead of averaging the two")
+{
+    const auto& t = test::trainedSynth();
+    const auto lips = contourVertices("lip");
+    // The same lips drawn twice from the front, the second time 4 mm lower: the result is the
+    // second drawing alone.
+    TrackingModel twice(t.model);
+    twice.apply(reading(lips, 0, kFront));
+    twice.apply(reading(lips, 0, kFront, { 0, -4, 0 }));
+    TrackingModel once(t.model);
+    once.apply(reading(lips, 0, kFront, { 0, -4, 0 }));
+    REQUIRE((twice.face() - once.face()).cwiseAbs().maxCoeff() < 1e-9);
+    for (std::uint32_t v : lips) {
+        REQUIRE(twice.state().constraints[v].size() == 1);
+        REQUIRE(twice.state().constraints[v][0].stroke == 2);
+    }
+    // Other features stay: a brow stroke, then the lips redrawn, keeps the brow's constraints.
+    const auto brows = contourVertices("eyebrow");
+    TrackingModel mixed(t.model);
+    mixed.apply(reading(brows, 0, kFront));
+    mixed.apply(reading(lips, 0, kFront));
+    for (std::uint32_t v : brows)
+        REQUIRE(mixed.state().constraints[v].size() == 1);
+}
+
+TEST_CASE("tracking: a redrawn line supersedes the old one where it passes, mapped to other vertices or not")
+{
+    const auto& t = test::trainedSynth();
+    const auto lips = contourVertices("lip_upper_outer");
+    REQUIRE(lips.size() >= 6);
+    TrackingModel tracking(t.model);
+    tracking.apply(reading(lips, 0, kFront));
+    // The second drawing pins every other vertex only, but its line passes over all of them.
+    std::vector<std::uint32_t> half;
+    for (size_t i = 0; i < lips.size(); i += 2)
+        half.push_back(lips[i]);
+    StrokeReading again = reading(half, 1, kFront);
+    for (std::uint32_t v : lips)
+        again.worldPoints.push_back(tracking.face().segment<3>(3 * v));
+    tracking.apply(again);
+    for (std::uint32_t v : lips)
+        for (const VertexConstraint& c : tracking.state().constraints[v])
+            REQUIRE(c.stroke == 2);
+    // A line drawn far from the lips (the brows) leaves the lips' constraints alone.
+    const auto brows = contourVertices("eyebrow");
+    StrokeReading brow = reading(brows, 1, kFront);
+    for (std::uint32_t v : brows)
+        brow.worldPoints.push_back(tracking.face().segment<3>(3 * v));
+    tracking.apply(brow);
+    for (size_t i = 0; i < lips.size(); i += 2)
+        REQUIRE(tracking.state().constraints[lips[i]].size() == 1);
+}
+
+TEST_CASE("tracking: strokes from two views combine into 3D measurements and a better face")
+{
+    const auto& t = test::trainedSynth();
+    const auto lips = contourVertices("lip");
+    TrackingModel front(t.model);
+    front.apply(reading(lips, 4, kFront));
+    TrackingModel both(t.model);
+    both.apply(reading(lips, 4, kFront));
+    both.apply(reading(lips, 4, kProfile));
+    for (std::uint32_t v : lips)
+        REQUIRE(both.state().constraints[v].size() == 2);
+    // Every lip vertex is then measured in 3D: 3 values each.
+    REQUIRE(both.observations().size() == 3 * static_cast<Eigen::Index>(lips.size()));
+    REQUIRE(front.observations().size() == 2 * static_cast<Eigen::Index>(lips.size()));
+    const double errorFront = meanError(front.face(), 4, lips), errorBoth = meanError(both.face(), 4, lips);
+    INFO("front " << errorFront << " mm, front + profile " << errorBoth << " mm");
+    REQUIRE(errorBoth < errorFront);
+}
+
+TEST_CASE("tracking: two view-plane constraints combine by least squares")
+{
+    const Eigen::Vector3d x(3, -2, 7);
+    VertexConstraint a, b;
+    a.rows = b.rows = 2;
+    a.A.topRows<2>() = kFront;
+    a.b.head<2>() = kFront * x;
+    b.A.topRows<2>() = kProfile;
+    b.b.head<2>() = kProfile * (x + Eigen::Vector3d(0, 1, 0)); // y disagrees by 1 mm
+    stats::Observations obs;
+    addCombined(obs, 5, { a, b });
+    REQUIRE(obs.size() == 3);
+    const Eigen::VectorXd y = obs.values();
+    REQUIRE(y[0] == Approx(3));
+    REQUIRE(y[1] == Approx(-1.5));
+    REQUIRE(y[2] == Approx(7));
+    // Two constraints of one view (rows spanning a plane only) stay a view-plane measurement.
+    stats::Observations same;
+    addCombined(same, 5, { a, a });
+    REQUIRE(same.size() == 2);
+}
+
+TEST_CASE("tracking: bad readings throw and leave the state exactly as it was")
+{
+    const auto& t = test::trainedSynth();
+    const auto lips = contourVertices("lip");
+    TrackingModel tracking(t.model);
+    tracking.apply(reading(lips, 0, kFront));
+    tracking.apply(reading(lips, 1, kProfile));
+    tracking.undo(); // one stroke to redo, which a failed apply must not forget
+    const TrackingState before = tracking.state();
+
+    StrokeReading empty;
+    empty.viewPlane = kFront;
+    REQUIRE_THROWS_WITH(tracking.apply(empty), Catch::Contains("pins no vertex"));
+    StrokeReading outside = reading(lips, 2, kFront);
+    outside.observations[3].vertex = static_cast<std::uint32_t>(t.model.vertexCount());
+    REQUIRE_THROWS_WITH(tracking.apply(outside), Catch::Contains("observations[3].vertex") && Catch::Contains("outside"));
+    StrokeReading nan = reading(lips, 2, kFront);
+    nan.observations[1].position.y() = std::numeric_limits<double>::quiet_NaN();
+    REQUIRE_THROWS_WITH(tracking.apply(nan), Catch::Contains("observations[1].position") && Catch::Contains("not finite"));
+    StrokeReading twice = reading(lips, 2, kFront);
+    twice.observations[2].vertex = twice.observations[0].vertex;
+    REQUIRE_THROWS_WITH(tracking.apply(twice), Catch::Contains("observed twice"));
+    StrokeReading skew = reading(lips, 2, kFront);
+    skew.viewPlane(0, 1) = 0.5;
+    REQUIRE_THROWS_WITH(tracking.apply(skew), Catch::Contains("not orthonormal"));
+
+    REQUIRE(sameState(tracking.state(), before));
+    REQUIRE(tracking.redo());
+}
+
+TEST_CASE("tracking: with symmetry a stroke on one side pins the mirror vertices too")
+{
+    const auto& t = test::trainedSynth();
+    const dataset::Component& skin = *t.dataset.manifest.component("skin");
+    Mesh mean;
+    mean.F = t.model.triangles;
+    mean.V.resize(t.model.vertexCount(), 3);
+    for (Eigen::Index v = 0; v < mean.V.rows(); ++v)
+        mean.V.row(v) = t.model.meanFace.segment<3>(3 * v).transpose();
+    const MirrorMap mirror = MirrorMap::find(mean, skinLandmarks(t.dataset.manifest.landmarks, skin.begin, skin.end), "mean face");
+    // The brow on the face's left only (x > the plane).
+    std::vector<std::uint32_t> left;
+    for (std::uint32_t v : contourVertices("eyebrow"))
+        if (mean.V(v, 0) > mirror.check().planeX + 5)
+            left.push_back(v);
+    REQUIRE(left.size() >= 3);
+    TrackingModel tracking(t.model);
+    ApplyOptions options;
+    options.mirror = &mirror;
+    tracking.apply(reading(left, 0, kFront), options);
+    REQUIRE(tracking.observedVertices() == static_cast<int>(2 * left.size()));
+    for (std::uint32_t v : left) {
+        const auto& c = tracking.state().constraints[mirror.partner(v)];
+        REQUIRE(c.size() == 1);
+        REQUIRE(c[0].mirrored);
+        // The mirror constraint holds the mirror image of the rebuilt left vertex's image.
+        const Eigen::Vector3d image = mirror.mirror(tracking.face().segment<3>(3 * v));
+        const Eigen::Vector3d partner = tracking.face().segment<3>(3 * mirror.partner(v));
+        INFO("vertex " << v << " partner " << mirror.partner(v));
+        REQUIRE((c[0].A.topRows<2>() * partner - c[0].b.head<2>()).norm() < 1e-9); // projected onto the face space
+        REQUIRE((image - partner).head<2>().norm() < 1.5);
+    }
+}
