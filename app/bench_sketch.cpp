@@ -7,7 +7,7 @@
 
 #include "core/error.h"
 #include "core/stopwatch.h"
-#include "dataset/synth.h"
+#include "dataset/synth/synth_dataset.h"
 #include "model/head_model.h"
 #include "sketch/mapper.h"
 #include "sketch/session.h"

@@ -3,6 +3,7 @@
 // curve of thesis figure 4.22 (error against the number of training faces).
 
 #include "commands.h"
+#include "sketch_data.h"
 
 #include "core/error.h"
 #include "core/stopwatch.h"
@@ -31,18 +32,6 @@ struct EvalContoursCommand {
     int trim = evaluation::ContourEvalOptions {}.trim;
     bool curve = false;
 };
-
-std::vector<Mesh> skinMeshes(const dataset::Dataset& ds, dataset::Role role, const Triangles& F, std::vector<std::string>* names)
-{
-    const Eigen::MatrixXd rows = dataset::loadShapes(ds, role, "skin");
-    std::vector<Mesh> out;
-    for (Eigen::Index i = 0; i < rows.rows(); ++i)
-        out.push_back({ dataset::unflatten(rows.row(i)), F });
-    if (names)
-        for (const dataset::Sample* s : ds.manifest.samplesWithRole(role))
-            names->push_back(s->name);
-    return out;
-}
 
 std::vector<std::pair<std::string, ViewAngles>> parseViews(const std::string& text)
 {
@@ -132,10 +121,10 @@ void runEvalContours(const EvalContoursCommand& c)
     evaluation::ContourEvalData data;
     data.model = &m;
     data.flags = evaluation::skinContourFlags(ds.manifest);
-    data.candidateFaces = skinMeshes(ds, dataset::Role::Train, F, nullptr);
-    for (Mesh& face : skinMeshes(ds, dataset::Role::Contour, F, nullptr))
+    data.candidateFaces = skinFaces(ds, dataset::Role::Train, F, nullptr);
+    for (Mesh& face : skinFaces(ds, dataset::Role::Contour, F, nullptr))
         data.candidateFaces.push_back(std::move(face));
-    data.testFaces = skinMeshes(ds, dataset::Role::Test, F, &data.testNames);
+    data.testFaces = skinFaces(ds, dataset::Role::Test, F, &data.testNames);
     if (data.testFaces.empty())
         fail(c.dataset, ": no `test` samples to evaluate on");
 

@@ -54,18 +54,13 @@ Mesh loadMesh(const Dataset& dataset, const fs::path& file)
 
 Eigen::RowVectorXd flatten(const Vertices& V)
 {
-    // Vertices is row-major, so its storage already is x0 y0 z0 x1 ...
-    return Eigen::Map<const Eigen::RowVectorXd>(V.data(), V.size());
+    return asVector(V).transpose();
 }
 
 Vertices unflatten(const Eigen::Ref<const Eigen::RowVectorXd>& row)
 {
-    if (row.size() % 3 != 0)
-        fail("unflatten: ", row.size(), " values is not a multiple of 3");
-    Vertices V(row.size() / 3, 3);
-    for (Eigen::Index i = 0; i < row.size(); ++i)
-        V.data()[i] = row(i);
-    return V;
+    const Eigen::VectorXd column = row.transpose();
+    return asVertices(column); // throws Error unless the size is a multiple of 3
 }
 
 Eigen::MatrixXd loadShapes(const Dataset& dataset, Role role, const std::string& componentName)

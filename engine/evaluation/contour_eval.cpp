@@ -28,14 +28,6 @@ const char* mappingName(ContourMapping mapping)
 
 namespace {
 
-Eigen::VectorXd flatten(const Mesh& mesh)
-{
-    Eigen::VectorXd out(mesh.V.size());
-    for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
-        out.segment<3>(3 * v) = mesh.V.row(v).transpose();
-    return out;
-}
-
 // Per-vertex distances between two 3#V vectors: (mean, max, all).
 std::pair<double, double> errors(const Eigen::VectorXd& a, const Eigen::VectorXd& b, Eigen::VectorXd* perVertex)
 {
@@ -88,9 +80,7 @@ std::vector<ContourEvalResult> evaluateContours(gpu::Device& device, const Conto
 
     Mesh mean;
     mean.F = model.triangles;
-    mean.V.resize(nv, 3);
-    for (Eigen::Index v = 0; v < nv; ++v)
-        mean.V.row(v) = model.meanFace.segment<3>(3 * v).transpose();
+    mean.V = asVertices(model.meanFace);
     ContourParams params;
     params.silhouetteThreshold = defaultSilhouetteThreshold(nv);
     params.suggestiveThreshold = options.suggestiveThreshold;
@@ -119,7 +109,7 @@ std::vector<ContourEvalResult> evaluateContours(gpu::Device& device, const Conto
 
         for (size_t f = 0; f < data.testFaces.size(); ++f) {
             const Mesh& face = data.testFaces[f];
-            const Eigen::VectorXd truth = flatten(face);
+            const Eigen::VectorXd truth = asVector(face.V);
             const std::vector<Candidate> points = contourCandidates({ face }, { testCurvature[f] }, data.flags, camera, params);
             const auto [meanFaceMean, meanFaceMax] = errors(model.meanFace, truth, nullptr);
 
@@ -188,9 +178,7 @@ std::vector<ContourEvalResult> evaluateContours(gpu::Device& device, const Conto
                 for (int k = 0; mapping != ContourMapping::KnownVertex && k < options.refinements; ++k) {
                     Mesh current;
                     current.F = model.triangles;
-                    current.V.resize(nv, 3);
-                    for (Eigen::Index v = 0; v < nv; ++v)
-                        current.V.row(v) = r.face.segment<3>(3 * v).transpose();
+                    current.V = asVertices(r.face);
                     const std::vector<Candidate> own
                         = contourCandidates({ current }, { estimateCurvature(current) }, data.flags, camera, params);
                     std::tie(r, observedCount) = rebuild(own);
@@ -205,9 +193,7 @@ std::vector<ContourEvalResult> evaluateContours(gpu::Device& device, const Conto
                 result.meanFaceMean = meanFaceMean;
                 result.meanFaceMax = meanFaceMax;
                 result.reconstruction.F = model.triangles;
-                result.reconstruction.V.resize(nv, 3);
-                for (Eigen::Index v = 0; v < nv; ++v)
-                    result.reconstruction.V.row(v) = r.face.segment<3>(3 * v).transpose();
+                result.reconstruction.V = asVertices(r.face);
                 results.push_back(std::move(result));
             }
         }

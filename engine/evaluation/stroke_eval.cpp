@@ -13,9 +13,7 @@ Mesh meshOf(const Eigen::VectorXd& flat, const Triangles& F)
 {
     Mesh m;
     m.F = F;
-    m.V.resize(flat.size() / 3, 3);
-    for (Eigen::Index v = 0; v < m.V.rows(); ++v)
-        m.V.row(v) = flat.segment<3>(3 * v).transpose();
+    m.V = asVertices(flat);
     return m;
 }
 

@@ -90,9 +90,7 @@ struct StrokeReader::Impl {
         faceCount = static_cast<std::uint32_t>(faces.size());
         Mesh mean;
         mean.F = model.triangles;
-        mean.V.resize(model.vertexCount(), 3);
-        for (Eigen::Index v = 0; v < model.vertexCount(); ++v)
-            mean.V.row(v) = model.meanFace.segment<3>(3 * v).transpose();
+        mean.V = asVertices(model.meanFace);
         featureSize = meanEdgeLength(mean);
         // Hops from the open border (edges of one triangle), up to kBorderScan rings.
         std::map<std::pair<int, int>, int> edgeUse;

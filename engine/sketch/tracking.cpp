@@ -105,10 +105,7 @@ Mesh TrackingModel::faceMesh() const
 {
     Mesh mesh;
     mesh.F = model_.triangles;
-    const Eigen::Index nv = model_.vertexCount();
-    mesh.V.resize(nv, 3);
-    for (Eigen::Index v = 0; v < nv; ++v)
-        mesh.V.row(v) = face().segment<3>(3 * v).transpose();
+    mesh.V = asVertices(face());
     return mesh;
 }
 

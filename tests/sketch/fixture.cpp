@@ -1,7 +1,7 @@
 #include "fixture.h"
 
 #include "dataset/dataset.h"
-#include "dataset/synth.h"
+#include "dataset/synth/synth_dataset.h"
 #include "evaluation/contour_eval.h"
 #include "model/head_model.h"
 #include "test_common.h"
