@@ -19,6 +19,7 @@ void addSynthCommand(CLI::App& root);
 void addImportCommand(CLI::App& root);
 void addTrainCommand(CLI::App& root);
 void addEvalCommand(CLI::App& root);
+void addRegisterCommand(CLI::App& root);
 
 /// `facesketch eval contours`, a subcommand of `eval` (cmd_eval.cpp creates `eval`).
 void addEvalContoursCommand(CLI::App& eval);

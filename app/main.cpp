@@ -20,6 +20,7 @@ int main(int argc, char** argv)
     app::addImportCommand(root);
     app::addTrainCommand(root);
     app::addEvalCommand(root);
+    app::addRegisterCommand(root);
 
     try {
         root.parse(argc, argv);

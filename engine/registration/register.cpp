@@ -71,7 +71,8 @@ double readThesis(const std::vector<double>& field, int width, int height, const
     return (1.0 - smoothing) * at(cx, cy) + smoothing * 0.5 * (leftRight + topBottom);
 }
 
-void registerByDepthMaps(const Mesh& scan, const Vertices& scanUnwrapped, const Triangles& templF, const Vertices& unwrapped,
+// `unwrapped` holds the registered vertices only, from template vertex `first` on.
+void registerByDepthMaps(const Mesh& scan, const Vertices& scanUnwrapped, const Triangles& templF, const Vertices& unwrapped, int first,
     const RegistrationOptions& options, Registration& out)
 {
     out.grid = gridAround(unwrapped, options.mapWidth, options.mapHeight);
@@ -98,7 +99,7 @@ void registerByDepthMaps(const Mesh& scan, const Vertices& scanUnwrapped, const 
                                              : VertexSource::Approximation;
         if (approx.depth[p] > thr(2) + options.occlusionTolerance)
             label = VertexSource::Occluded;
-        out.source[static_cast<std::size_t>(v)] = label;
+        out.source[static_cast<std::size_t>(first + v)] = label;
         if (label == VertexSource::Approximation)
             continue; // out.registered already holds the approximation
         double r = thr(2);
@@ -120,12 +121,12 @@ void registerByDepthMaps(const Mesh& scan, const Vertices& scanUnwrapped, const 
         } else {
             r += sampleBilinear(merged, W, H, pixel);
         }
-        out.registered.row(v) = out.frame.fromCylinder({ thr(0), thr(1), r }).transpose();
+        out.registered.row(first + v) = out.frame.fromCylinder({ thr(0), thr(1), r }).transpose();
     }
 }
 
-void registerByProjection(
-    const Vertices& scanUnwrapped, const Triangles& scanF, const Vertices& unwrapped, const RegistrationOptions& options, Registration& out)
+void registerByProjection(const Vertices& scanUnwrapped, const Triangles& scanF, const Vertices& unwrapped, int first,
+    const RegistrationOptions& options, Registration& out)
 {
     // Buckets of scan triangles over the unwrapped plane, about 4 pixels of the map each.
     DepthGrid buckets = gridAround(unwrapped, std::max(2, options.mapWidth / 4), std::max(2, options.mapHeight / 4));
@@ -153,7 +154,7 @@ void registerByProjection(
     for (Eigen::Index v = 0; v < unwrapped.rows(); ++v) {
         const Eigen::Vector3d thr = unwrapped.row(v).transpose();
         const Eigen::Vector2d pixel = buckets.toPixel(thr(0), thr(1));
-        out.source[static_cast<std::size_t>(v)] = VertexSource::Approximation;
+        out.source[static_cast<std::size_t>(first + v)] = VertexSource::Approximation;
         if (pixel.x() < 0 || pixel.y() < 0 || pixel.x() >= W || pixel.y() >= H)
             continue;
         double best = std::numeric_limits<double>::infinity(), bestR = thr(2);
@@ -177,8 +178,8 @@ void registerByProjection(
             }
         }
         if (best <= options.maxDisplacement) {
-            out.source[static_cast<std::size_t>(v)] = VertexSource::Scan;
-            out.registered.row(v) = out.frame.fromCylinder({ thr(0), thr(1), bestR }).transpose();
+            out.source[static_cast<std::size_t>(first + v)] = VertexSource::Scan;
+            out.registered.row(first + v) = out.frame.fromCylinder({ thr(0), thr(1), bestR }).transpose();
         }
     }
 }
@@ -224,6 +225,9 @@ Registration registerScan(const Mesh& templ, const FeaturePoints& templatePoints
         fail(scanName, ": smoothing ", options.smoothing, " outside [0, 1]");
     if (!(options.blendPixels > 0.0) || !(options.maxDisplacement > 0.0))
         fail(scanName, ": blend width and largest displacement must be positive");
+    const int first = options.firstVertex, end = options.endVertex < 0 ? static_cast<int>(templ.V.rows()) : options.endVertex;
+    if (first < 0 || first >= end || end > templ.V.rows())
+        fail(scanName, ": registered vertices [", first, ", ", end, ") not inside the template's [0, ", templ.V.rows(), ")");
     const SurfaceQuery surface(scan);
     validateFeaturePoints(scanPoints, surface, scanName, options.limits);
 
@@ -234,12 +238,21 @@ Registration registerScan(const Mesh& templ, const FeaturePoints& templatePoints
     out.registered = out.approximation;
     out.source.assign(static_cast<std::size_t>(templ.V.rows()), VertexSource::Approximation);
     out.frame = frameFromFeaturePoints(out.points.names, out.points.scanPoints);
-    const Vertices unwrapped = out.frame.unwrap(out.approximation);
+    const Vertices unwrapped = out.frame.unwrap(out.approximation.middleRows(first, end - first));
     const Vertices scanUnwrapped = out.frame.unwrap(scan.V);
+    std::vector<int> kept;
+    for (Eigen::Index f = 0; f < templ.F.rows(); ++f)
+        if (templ.F.row(f).minCoeff() >= first && templ.F.row(f).maxCoeff() < end)
+            kept.push_back(static_cast<int>(f));
+    if (kept.empty())
+        fail(scanName, ": no template triangle among the registered vertices [", first, ", ", end, ")");
+    Triangles F(static_cast<Eigen::Index>(kept.size()), 3);
+    for (std::size_t i = 0; i < kept.size(); ++i)
+        F.row(static_cast<Eigen::Index>(i)) = templ.F.row(kept[i]).array() - first;
     if (options.method == RegistrationMethod::DepthMaps)
-        registerByDepthMaps(scan, scanUnwrapped, templ.F, unwrapped, options, out);
+        registerByDepthMaps(scan, scanUnwrapped, F, unwrapped, first, options, out);
     else
-        registerByProjection(scanUnwrapped, scan.F, unwrapped, options, out);
+        registerByProjection(scanUnwrapped, scan.F, unwrapped, first, options, out);
     return out;
 }
 

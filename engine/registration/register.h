@@ -61,6 +61,10 @@ struct RegistrationOptions {
     /// A vertex more than this (mm) below the approximation's outermost surface is Occluded.
     double occlusionTolerance = 0.5;
     FeaturePointLimits limits;
+    /// Only vertices [firstVertex, endVertex) are registered (e.g. the template's "skin"
+    /// component), and only triangles among them rasterised; every other vertex (eyes, teeth)
+    /// keeps the RBF approximation. endVertex < 0: up to the last vertex.
+    int firstVertex = 0, endVertex = -1;
 };
 
 /// Where a registered vertex's position came from.

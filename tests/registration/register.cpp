@@ -193,3 +193,29 @@ TEST_CASE("registerScan: bad scans and options name the scan")
         registerScan(templ, templPoints, templ, points, "s.ply", bad), Catch::Contains("s.ply: smoothing 1.5 outside [0, 1]"));
     REQUIRE_THROWS_WITH(landmarkPositions(templ, { { "prn", 100000 } }), Catch::Contains("template landmark 'prn': vertex 100000"));
 }
+
+TEST_CASE("registerScan: only the chosen vertex range is registered, the rest keeps the approximation")
+{
+    const Mesh templ = test::makeHead(3);
+    const FeaturePoints templPoints = landmarkPositions(templ, test::headLandmarks(templ));
+    const Mesh scan = test::makeHead(4, 8.0);
+    RegistrationOptions options;
+    options.mapWidth = options.mapHeight = 128;
+    options.firstVertex = 100;
+    options.endVertex = 400;
+    const Registration r = registerScan(templ, templPoints, scan, test::headPoints(8.0), "scan.ply", options);
+    int moved = 0;
+    for (Eigen::Index v = 0; v < templ.V.rows(); ++v) {
+        const bool inside = v >= 100 && v < 400;
+        if (!inside) {
+            REQUIRE(r.source[static_cast<std::size_t>(v)] == VertexSource::Approximation);
+            REQUIRE(r.registered.row(v) == r.approximation.row(v));
+        } else if ((r.registered.row(v) - r.approximation.row(v)).norm() > 1e-6) {
+            ++moved;
+        }
+    }
+    REQUIRE(moved > 20);
+    options.endVertex = 5000;
+    REQUIRE_THROWS_WITH(registerScan(templ, templPoints, scan, test::headPoints(8.0), "scan.ply", options),
+        Catch::Contains("registered vertices [100, 5000)"));
+}

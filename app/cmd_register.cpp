@@ -1,0 +1,165 @@
+// `facesketch register TEMPLATE SCAN --points FPS.json -o OUT.ply [--error-map PNG]`: registers a
+// scan of any topology into a dataset's topology (issue 15; thesis 3.2.6-3.2.12). The template is
+// the dataset's mean training face with its landmarks; the skin is registered, the other
+// components (eyes, teeth, tongue) follow the RBF approximation.
+#include "commands.h"
+
+#include "core/error.h"
+#include "core/stopwatch.h"
+#include "dataset/dataset.h"
+#include "io/mesh_io.h"
+#include "registration/error_map.h"
+#include "registration/register.h"
+#include "registration/surface_query.h"
+#include "render/renderer.h"
+
+#include <iomanip>
+#include <iostream>
+
+namespace facesketch::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace facesketch::registration;
+
+double unitInMm(const std::string& units, const std::string& what)
+{
+    if (units == "mm")
+        return 1.0;
+    if (units == "cm")
+        return 10.0;
+    if (units == "m")
+        return 1000.0;
+    fail(what, ": units '", units, "' are not mm, cm or m");
+}
+
+struct RegisterCommand {
+    std::string templ, scan, points, output, errorMap, units = "mm", method = "depth", readBack = "plane";
+    RegistrationOptions options;
+    double errorScale = 2.0;
+    int imageSize = 800;
+};
+
+void runRegister(const RegisterCommand& c)
+{
+    const double scanScale = unitInMm(c.units, "--units");
+    const dataset::Dataset ds = dataset::openDataset(c.templ);
+    const double templateScale = unitInMm(ds.manifest.units, (fs::path(c.templ) / "manifest.json").string());
+    if (ds.manifest.samplesWithRole(dataset::Role::Train).empty())
+        fail(c.templ, ": the template dataset has no training faces to average");
+    // The template: the mean training face in the dataset's topology, in mm.
+    Mesh templ;
+    templ.V = dataset::unflatten(dataset::loadShapes(ds, dataset::Role::Train).colwise().mean()) * templateScale;
+    templ.F = ds.manifest.topology;
+    // The scan and its points, in mm.
+    Mesh scan = readMesh(c.scan);
+    scan.V *= scanScale;
+    FeaturePoints points = readFeaturePoints(c.points);
+    for (auto& [name, p] : points)
+        p *= scanScale;
+
+    RegistrationOptions options = c.options;
+    options.method = c.method == "projection" ? RegistrationMethod::Projection : RegistrationMethod::DepthMaps;
+    options.readBack = c.readBack == "thesis" ? ReadBack::Thesis : c.readBack == "bilinear" ? ReadBack::Bilinear : ReadBack::Plane;
+    if (const dataset::Component* skin = ds.manifest.component("skin")) {
+        options.firstVertex = skin->begin;
+        options.endVertex = skin->end;
+    }
+    const Stopwatch clock;
+    const Registration r = registerScan(templ, landmarkPositions(templ, ds.manifest.landmarks), scan, points, c.scan, options);
+    const double seconds = clock.seconds();
+
+    // Measure before writing, so that a failure leaves nothing behind.
+    const SurfaceQuery surface(scan);
+    std::vector<double> error = distanceToSurface(r.registered, surface);
+    for (std::size_t v = 0; v < error.size(); ++v)
+        if (r.source[v] != VertexSource::Scan)
+            error[v] = std::numeric_limits<double>::quiet_NaN(); // measured only where the scan has surface
+    const ErrorSummary summary = summarize(error);
+    const ErrorSummary before = summarize(distanceToSurface(r.approximation, surface));
+
+    Mesh out { r.registered / templateScale, templ.F };
+    writeMesh(c.output, out);
+    int counts[4] = { 0, 0, 0, 0 };
+    for (const VertexSource s : r.source)
+        ++counts[static_cast<int>(s)];
+    std::cout << std::fixed << std::setprecision(3) << "registered " << c.scan << " onto " << c.templ << " (" << templ.V.rows()
+              << " vertices) in " << seconds << " s: wrote " << c.output << "\n";
+    for (int s = 0; s < 4; ++s)
+        std::cout << "  " << sourceName(static_cast<VertexSource>(s)) << ": " << counts[s] << " vertices\n";
+    if (!r.points.estimated.empty()) {
+        std::cout << "  estimated from the template:";
+        for (const auto& name : r.points.estimated)
+            std::cout << " " << name;
+        std::cout << "\n";
+    }
+    for (const auto& name : r.points.unused)
+        std::cout << "  unused (not on the template): " << name << "\n";
+    std::cout << "  RBF approximation to scan: mean " << before.mean << " mm, p95 " << before.p95 << " mm, max " << before.max << " mm ("
+              << before.measured << " vertices over the scan)\n";
+    std::cout << "  registered to scan: mean " << summary.mean << " mm, p95 " << summary.p95 << " mm, max " << summary.max << " mm ("
+              << summary.measured << " vertices)\n";
+
+    if (!c.errorMap.empty()) {
+        gpu::ScopedDevice deviceOwner;
+        Image image;
+        {
+            Renderer renderer(*deviceOwner, c.imageSize, c.imageSize);
+            Mesh shown { r.registered, templ.F };
+            renderer.addMesh(shown, {}, errorColors(error, c.errorScale));
+            image = renderer.render(frameMesh(shown, parseView("front"), c.imageSize, c.imageSize, Projection::Orthographic));
+        }
+        writePng(c.errorMap, image);
+        std::cout << "  error map: " << c.errorMap << " (blue 0 mm to red " << c.errorScale << " mm, grey where the scan has no surface)\n";
+    }
+}
+
+} // namespace
+
+void addRegisterCommand(CLI::App& root)
+{
+    auto c = std::make_shared<RegisterCommand>();
+    auto* cmd = root.add_subcommand("register",
+        "Register a scan of any topology into a dataset's topology (thesis 3.2.6-3.2.12):\n"
+        "RBF fit on feature points, then cylindrical depth maps (see engine/registration/register.h).");
+    cmd->add_option("TEMPLATE", c->templ, "Dataset whose mean training face and landmarks are the template")->required();
+    cmd->add_option("SCAN", c->scan, "Scan (.obj or .ply), any topology, holes allowed")->required();
+    cmd->add_option("--points", c->points, "Feature points JSON {name: [x, y, z]} (landmark names of docs/dataset-format.md)")->required();
+    cmd->add_option("-o,--output", c->output, "Registered mesh to write (.ply or .obj), in the template's units")->required();
+    cmd->add_option("--error-map", c->errorMap, "PNG of the registered face coloured by its distance to the scan");
+    cmd->add_option("--error-scale", c->errorScale, "Distance (mm) shown red in the error map")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--units", c->units, "Units of the scan and its points")
+        ->capture_default_str()
+        ->check(CLI::IsMember({ "mm", "cm", "m" }));
+    cmd->add_option("--method", c->method, "depth (depth maps, 3.2.12) or projection (3.2.11)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({ "depth", "projection" }));
+    cmd->add_option("--map-size", c->options.mapWidth, "Depth map width and height in pixels")
+        ->capture_default_str()
+        ->check(CLI::Range(8, 8192));
+    cmd->add_option("--read-back", c->readBack, "plane, bilinear or thesis (3.2.12.3 smoothing)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({ "plane", "bilinear", "thesis" }));
+    cmd->add_option("--smoothing", c->options.smoothing, "Thesis read-back: weight of the neighbouring pixels")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1.0));
+    cmd->add_option("--blend", c->options.blendPixels, "Seam blend width beyond the scan's data, pixels")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--max-displacement", c->options.maxDisplacement, "Scan depths farther (mm) from the approximation are ignored")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    cmd->add_option(
+           "--max-point-distance", c->options.limits.maxDistanceFromSurface, "Largest distance (mm) of a feature point from the scan")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    cmd->callback([c] {
+        c->options.mapHeight = c->options.mapWidth;
+        runRegister(*c);
+    });
+}
+
+} // namespace facesketch::app
