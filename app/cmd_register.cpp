@@ -13,8 +13,10 @@
 #include "registration/surface_query.h"
 #include "render/renderer.h"
 
+#include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 
 namespace facesketch::app {
 
@@ -35,7 +37,7 @@ double unitInMm(const std::string& units, const std::string& what)
 }
 
 struct RegisterCommand {
-    std::string templ, scan, points, output, errorMap, units = "mm", method = "depth", readBack = "plane";
+    std::string templ, scan, points, output, errorMap, truth, units = "mm", method = "depth", readBack = "plane";
     RegistrationOptions options;
     double errorScale = 2.0;
     int imageSize = 800;
@@ -70,14 +72,28 @@ void runRegister(const RegisterCommand& c)
     const Registration r = registerScan(templ, landmarkPositions(templ, ds.manifest.landmarks), scan, points, c.scan, options);
     const double seconds = clock.seconds();
 
-    // Measure before writing, so that a failure leaves nothing behind.
+    // Measure before writing, so that a failure leaves nothing behind. Only the registered
+    // vertices count (the skin; the rigid parts sit inside the head).
+    const int first = options.firstVertex, end = options.endVertex < 0 ? static_cast<int>(templ.V.rows()) : options.endVertex;
     const SurfaceQuery surface(scan);
     std::vector<double> error = distanceToSurface(r.registered, surface);
+    std::vector<double> before = distanceToSurface(r.approximation, surface);
     for (std::size_t v = 0; v < error.size(); ++v)
-        if (r.source[v] != VertexSource::Scan)
+        if (r.source[v] != VertexSource::Scan || static_cast<int>(v) < first || static_cast<int>(v) >= end) {
             error[v] = std::numeric_limits<double>::quiet_NaN(); // measured only where the scan has surface
-    const ErrorSummary summary = summarize(error);
-    const ErrorSummary before = summarize(distanceToSurface(r.approximation, surface));
+            before[v] = std::numeric_limits<double>::quiet_NaN();
+        }
+    const ErrorSummary summary = summarize(error), beforeSummary = summarize(before);
+    // With a known true surface (a synthetic check), also the distance to it over the same vertices.
+    std::vector<double> truthError;
+    if (!c.truth.empty()) {
+        Mesh truth = readMesh(c.truth);
+        truth.V *= scanScale;
+        truthError = distanceToSurface(r.registered, SurfaceQuery(truth));
+        for (std::size_t v = 0; v < truthError.size(); ++v)
+            if (std::isnan(error[v]))
+                truthError[v] = std::numeric_limits<double>::quiet_NaN();
+    }
 
     Mesh out { r.registered / templateScale, templ.F };
     writeMesh(c.output, out);
@@ -96,10 +112,15 @@ void runRegister(const RegisterCommand& c)
     }
     for (const auto& name : r.points.unused)
         std::cout << "  unused (not on the template): " << name << "\n";
-    std::cout << "  RBF approximation to scan: mean " << before.mean << " mm, p95 " << before.p95 << " mm, max " << before.max << " mm ("
-              << before.measured << " vertices over the scan)\n";
+    std::cout << "  RBF approximation to scan: mean " << beforeSummary.mean << " mm, p95 " << beforeSummary.p95 << " mm, max "
+              << beforeSummary.max << " mm (" << beforeSummary.measured << " vertices over the scan)\n";
     std::cout << "  registered to scan: mean " << summary.mean << " mm, p95 " << summary.p95 << " mm, max " << summary.max << " mm ("
               << summary.measured << " vertices)\n";
+    if (!c.truth.empty()) {
+        const ErrorSummary t = summarize(truthError);
+        std::cout << "  registered to " << c.truth << ": mean " << t.mean << " mm, p95 " << t.p95 << " mm, max " << t.max << " mm ("
+                  << t.measured << " vertices)\n";
+    }
 
     if (!c.errorMap.empty()) {
         gpu::ScopedDevice deviceOwner;
@@ -107,7 +128,7 @@ void runRegister(const RegisterCommand& c)
         {
             Renderer renderer(*deviceOwner, c.imageSize, c.imageSize);
             Mesh shown { r.registered, templ.F };
-            renderer.addMesh(shown, {}, errorColors(error, c.errorScale));
+            renderer.addMesh(shown, {}, errorColors(c.truth.empty() ? error : truthError, c.errorScale));
             image = renderer.render(frameMesh(shown, parseView("front"), c.imageSize, c.imageSize, Projection::Orthographic));
         }
         writePng(c.errorMap, image);
@@ -131,6 +152,7 @@ void addRegisterCommand(CLI::App& root)
     cmd->add_option("--error-scale", c->errorScale, "Distance (mm) shown red in the error map")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
+    cmd->add_option("--truth", c->truth, "The scan's true surface, if known (synthetic checks): also measure, and map, the distance to it");
     cmd->add_option("--units", c->units, "Units of the scan and its points")
         ->capture_default_str()
         ->check(CLI::IsMember({ "mm", "cm", "m" }));
