@@ -152,6 +152,7 @@ void addRegisterCommand(CLI::App& root)
     cmd->add_option("--error-scale", c->errorScale, "Distance (mm) shown red in the error map")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
+    cmd->add_option("--size", c->imageSize, "Error map width and height in pixels")->capture_default_str()->check(CLI::Range(16, 8192));
     cmd->add_option("--truth", c->truth, "The scan's true surface, if known (synthetic checks): also measure, and map, the distance to it");
     cmd->add_option("--units", c->units, "Units of the scan and its points")
         ->capture_default_str()
