@@ -2,6 +2,8 @@
 // scan of any topology into a dataset's topology (issue 15; thesis 3.2.6-3.2.12). The template is
 // the dataset's mean training face with its landmarks; the skin is registered, the other
 // components (eyes, teeth, tongue) follow the RBF approximation.
+// `facesketch import scans DIR --template DATASET -o NEW`: every scan of a folder registered into
+// a new dataset (registration/import_scans.h).
 #include "commands.h"
 
 #include "core/error.h"
@@ -9,6 +11,7 @@
 #include "dataset/dataset.h"
 #include "io/mesh_io.h"
 #include "registration/error_map.h"
+#include "registration/import_scans.h"
 #include "registration/register.h"
 #include "registration/surface_query.h"
 #include "render/renderer.h"
@@ -25,17 +28,6 @@ namespace {
 namespace fs = std::filesystem;
 using namespace facesketch::registration;
 
-double unitInMm(const std::string& units, const std::string& what)
-{
-    if (units == "mm")
-        return 1.0;
-    if (units == "cm")
-        return 10.0;
-    if (units == "m")
-        return 1000.0;
-    fail(what, ": units '", units, "' are not mm, cm or m");
-}
-
 struct RegisterCommand {
     std::string templ, scan, points, output, errorMap, truth, units = "mm", method = "depth", readBack = "plane";
     RegistrationOptions options;
@@ -45,15 +37,12 @@ struct RegisterCommand {
 
 void runRegister(const RegisterCommand& c)
 {
-    const double scanScale = unitInMm(c.units, "--units");
+    const double scanScale = millimetresPer(c.units, "--units");
     const dataset::Dataset ds = dataset::openDataset(c.templ);
-    const double templateScale = unitInMm(ds.manifest.units, (fs::path(c.templ) / "manifest.json").string());
-    if (ds.manifest.samplesWithRole(dataset::Role::Train).empty())
-        fail(c.templ, ": the template dataset has no training faces to average");
+    const double templateScale = millimetresPer(ds.manifest.units, (fs::path(c.templ) / "manifest.json").string());
     // The template: the mean training face in the dataset's topology, in mm.
-    Mesh templ;
-    templ.V = dataset::unflatten(dataset::loadShapes(ds, dataset::Role::Train).colwise().mean()) * templateScale;
-    templ.F = ds.manifest.topology;
+    Mesh templ = meanFace(ds);
+    templ.V *= templateScale;
     // The scan and its points, in mm.
     Mesh scan = readMesh(c.scan);
     scan.V *= scanScale;
@@ -182,6 +171,48 @@ void addRegisterCommand(CLI::App& root)
     cmd->callback([c] {
         c->options.mapHeight = c->options.mapWidth;
         runRegister(*c);
+    });
+}
+
+void addImportScansCommand(CLI::App& import)
+{
+    struct Options {
+        std::string folder, templ, output;
+        ScanImportOptions o;
+        bool quiet = false;
+    };
+    auto o = std::make_shared<Options>();
+    auto* sub = import.add_subcommand("scans",
+        "Register every scan of DIR (.obj/.ply, any topology, each with <stem>.points.json)\n"
+        "into a template dataset's topology (see engine/registration/import_scans.h).");
+    sub->add_option("DIR", o->folder, "Folder of scans with their feature points")->required();
+    sub->add_option("--template", o->templ, "Dataset whose mean training face, topology and labels are the template")->required();
+    sub->add_option("-o,--output", o->output, "Dataset folder to write (replaced atomically if it is a dataset)")->required();
+    sub->add_option("--units", o->o.units, "Units of the scans and their points")
+        ->capture_default_str()
+        ->check(CLI::IsMember({ "mm", "cm", "m" }));
+    sub->add_option("--seed", o->o.seed, "Seed of the shuffle that assigns train/contour/test roles")->capture_default_str();
+    sub->add_option("--map-size", o->o.registration.mapWidth, "Depth map width and height in pixels")
+        ->capture_default_str()
+        ->check(CLI::Range(8, 8192));
+    sub->add_flag("-q,--quiet", o->quiet, "No progress bar");
+    sub->callback([o] {
+        o->o.registration.mapHeight = o->o.registration.mapWidth;
+        if (!o->quiet)
+            o->o.progress = [](int done, int total, const std::string& name) {
+                constexpr int width = 30;
+                const int filled = done * width / total;
+                std::cerr << "\r[" << std::string(static_cast<size_t>(filled), '#') << std::string(static_cast<size_t>(width - filled), ' ')
+                          << "] " << done << "/" << total << " " << std::left << std::setw(24) << name << std::right << std::flush;
+                if (done == total)
+                    std::cerr << "\n";
+            };
+        const Stopwatch clock;
+        const ScanImport result = importScans(o->folder, dataset::openDataset(o->templ), o->output, o->o);
+        for (const ScanFailure& f : result.failures)
+            std::cerr << "skipped " << f.reason << "\n";
+        std::cout << "wrote " << o->output << ": " << result.manifest.samples.size() << " registered scans, " << result.failures.size()
+                  << " skipped, " << result.manifest.vertexCount << " vertices (" << clock.seconds() << " s)\n";
     });
 }
 

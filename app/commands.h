@@ -20,6 +20,8 @@ void addImportCommand(CLI::App& root);
 void addTrainCommand(CLI::App& root);
 void addEvalCommand(CLI::App& root);
 void addRegisterCommand(CLI::App& root);
+/// `facesketch import scans`, a subcommand of `import` (cmd_import.cpp creates `import`).
+void addImportScansCommand(CLI::App& import);
 
 /// `facesketch eval contours`, a subcommand of `eval` (cmd_eval.cpp creates `eval`).
 void addEvalContoursCommand(CLI::App& eval);

@@ -21,6 +21,7 @@ int main(int argc, char** argv)
     app::addTrainCommand(root);
     app::addEvalCommand(root);
     app::addRegisterCommand(root);
+    app::addImportScansCommand(*root.get_subcommand("import"));
 
     try {
         root.parse(argc, argv);

@@ -87,7 +87,7 @@ void validateFeaturePoints(
         const ClosestPoint c = scan.closest(p);
         if (c.distance > limits.maxDistanceFromSurface)
             fail(scanName, ": feature point '", name, "' (", p(0), ", ", p(1), ", ", p(2), ") is ", c.distance,
-                " from the scan's surface (at most ", limits.maxDistanceFromSurface, ")");
+                " mm from the scan's surface (at most ", limits.maxDistanceFromSurface, " mm)");
     }
 }
 

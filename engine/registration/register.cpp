@@ -212,6 +212,19 @@ FeaturePoints landmarkPositions(const Mesh& templ, const std::map<std::string, i
     return out;
 }
 
+void checkRegistrationOptions(const RegistrationOptions& options, Eigen::Index templateVertices, const std::string& where)
+{
+    if (options.mapWidth < 8 || options.mapHeight < 8)
+        fail(where, ": depth maps of ", options.mapWidth, " x ", options.mapHeight, " pixels, at least 8 x 8 needed");
+    if (!(options.smoothing >= 0.0 && options.smoothing <= 1.0))
+        fail(where, ": smoothing ", options.smoothing, " outside [0, 1]");
+    if (!(options.blendPixels > 0.0) || !(options.maxDisplacement > 0.0))
+        fail(where, ": blend width and largest displacement must be positive");
+    const Eigen::Index end = options.endVertex < 0 ? templateVertices : options.endVertex;
+    if (options.firstVertex < 0 || options.firstVertex >= end || end > templateVertices)
+        fail(where, ": registered vertices [", options.firstVertex, ", ", end, ") not inside the template's [0, ", templateVertices, ")");
+}
+
 Registration registerScan(const Mesh& templ, const FeaturePoints& templatePoints, const Mesh& scan, const FeaturePoints& scanPoints,
     const std::string& scanName, const RegistrationOptions& options)
 {
@@ -219,15 +232,8 @@ Registration registerScan(const Mesh& templ, const FeaturePoints& templatePoints
         fail(scanName, ": the scan has no triangles");
     validateMesh(scan, scanName);
     validateMesh(templ, "the template");
-    if (options.mapWidth < 8 || options.mapHeight < 8)
-        fail(scanName, ": depth maps of ", options.mapWidth, " x ", options.mapHeight, " pixels, at least 8 x 8 needed");
-    if (!(options.smoothing >= 0.0 && options.smoothing <= 1.0))
-        fail(scanName, ": smoothing ", options.smoothing, " outside [0, 1]");
-    if (!(options.blendPixels > 0.0) || !(options.maxDisplacement > 0.0))
-        fail(scanName, ": blend width and largest displacement must be positive");
+    checkRegistrationOptions(options, templ.V.rows(), scanName);
     const int first = options.firstVertex, end = options.endVertex < 0 ? static_cast<int>(templ.V.rows()) : options.endVertex;
-    if (first < 0 || first >= end || end > templ.V.rows())
-        fail(scanName, ": registered vertices [", first, ", ", end, ") not inside the template's [0, ", templ.V.rows(), ")");
     const SurfaceQuery surface(scan);
     validateFeaturePoints(scanPoints, surface, scanName, options.limits);
 

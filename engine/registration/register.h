@@ -96,6 +96,9 @@ struct Registration {
 Registration registerScan(const Mesh& templ, const FeaturePoints& templatePoints, const Mesh& scan, const FeaturePoints& scanPoints,
     const std::string& scanName, const RegistrationOptions& options = {});
 
+/// Throws Error "<where>: ..." if an option is out of range for a template of that many vertices.
+void checkRegistrationOptions(const RegistrationOptions& options, Eigen::Index templateVertices, const std::string& where);
+
 /// The template's feature points: the position of each landmark vertex. Throws Error if a
 /// vertex index is outside the mesh.
 FeaturePoints landmarkPositions(const Mesh& templ, const std::map<std::string, int>& landmarks);
