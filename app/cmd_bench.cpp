@@ -48,6 +48,7 @@ const std::vector<Benchmark>& benchmarks()
         { "synth", "250 synthetic identities at each resolution, 250 ICT identities, 10 identities with their 36 poses", benchSynth },
         { "stats", "statistics core at 6,000 vertices: conditional inference, reconstruction, one mixture fit", benchStatsCore },
         { "train", "face model on the synthetic low, high and ultra sets: training time, file size, reconstruction latency", benchTrain },
+        { "register", "registering one 100,000-triangle scan onto a 6,000-vertex template: depth maps and projection", benchRegister },
     };
     return all;
 }
