@@ -58,6 +58,20 @@ std::vector<double> blendBeyondData(const std::vector<double>& D, int width, int
     return out;
 }
 
+// The angles of the right and left ear (obs_r, obs_l) about the axis, between which the scan is
+// used; the whole circle without them or when options.betweenEars is off.
+Eigen::Vector2d earAngles(const Registration& out, const RegistrationOptions& options)
+{
+    Eigen::Vector2d ears(-std::numbers::pi, std::numbers::pi);
+    const auto& names = out.points.names;
+    const auto l = std::find(names.begin(), names.end(), "obs_l"), r = std::find(names.begin(), names.end(), "obs_r");
+    if (options.betweenEars && l != names.end() && r != names.end()) {
+        ears(0) = out.frame.toCylinder(out.points.scanPoints.row(r - names.begin()).transpose())(0);
+        ears(1) = out.frame.toCylinder(out.points.scanPoints.row(l - names.begin()).transpose())(0);
+    }
+    return ears;
+}
+
 double readThesis(const std::vector<double>& field, int width, int height, const Eigen::Vector2d& pixel, double smoothing)
 {
     const int cx = std::clamp(static_cast<int>(std::floor(pixel.x())), 0, width - 1);
@@ -80,9 +94,11 @@ void registerByDepthMaps(const Mesh& scan, const Vertices& scanUnwrapped, const 
     const DepthMap target = rasterizeDepth(scanUnwrapped, scan.F, out.grid);
     const int W = out.grid.width, H = out.grid.height;
     std::vector<double> D(approx.depth.size(), std::numeric_limits<double>::quiet_NaN());
+    const Eigen::Vector2d ears = earAngles(out, options);
     for (std::size_t i = 0; i < D.size(); ++i) {
         const double d = target.depth[i] - approx.depth[i];
-        if (std::abs(d) <= options.maxDisplacement)
+        const double theta = out.grid.centre(static_cast<int>(i % W), static_cast<int>(i / W))(0);
+        if (std::abs(d) <= options.maxDisplacement && theta >= ears(0) && theta <= ears(1))
             D[i] = d;
     }
     std::vector<double> reach;
@@ -114,8 +130,9 @@ void registerByDepthMaps(const Mesh& scan, const Vertices& scanUnwrapped, const 
             const Eigen::Vector2d at = thr.head<2>();
             const double area = (q[1] - q[0]).x() * (q[2] - q[0]).y() - (q[1] - q[0]).y() * (q[2] - q[0]).x();
             auto edge = [&](int i, int j) { return ((q[j] - q[i]).x() * (at - q[i]).y() - (q[j] - q[i]).y() * (at - q[i]).x()) / area; };
-            r = edge(1, 2) * scanUnwrapped(scan.F(f, 0), 2) + edge(2, 0) * scanUnwrapped(scan.F(f, 1), 2)
+            const double planeDepth = edge(1, 2) * scanUnwrapped(scan.F(f, 0), 2) + edge(2, 0) * scanUnwrapped(scan.F(f, 1), 2)
                 + edge(0, 1) * scanUnwrapped(scan.F(f, 2), 2);
+            r = planeDepth;
         } else if (options.readBack == ReadBack::Thesis) {
             r += readThesis(merged, W, H, pixel, options.smoothing);
         } else {
@@ -151,11 +168,12 @@ void registerByProjection(const Vertices& scanUnwrapped, const Triangles& scanF,
             for (int x = std::max(0, static_cast<int>(a.x())); x <= std::min(W - 1, static_cast<int>(b.x())); ++x)
                 bucket[static_cast<std::size_t>(y) * W + x].push_back(static_cast<int>(f));
     }
+    const Eigen::Vector2d ears = earAngles(out, options);
     for (Eigen::Index v = 0; v < unwrapped.rows(); ++v) {
         const Eigen::Vector3d thr = unwrapped.row(v).transpose();
         const Eigen::Vector2d pixel = buckets.toPixel(thr(0), thr(1));
         out.source[static_cast<std::size_t>(first + v)] = VertexSource::Approximation;
-        if (pixel.x() < 0 || pixel.y() < 0 || pixel.x() >= W || pixel.y() >= H)
+        if (pixel.x() < 0 || pixel.y() < 0 || pixel.x() >= W || pixel.y() >= H || thr(0) < ears(0) || thr(0) > ears(1))
             continue;
         double best = std::numeric_limits<double>::infinity(), bestR = thr(2);
         for (const int f : bucket[static_cast<std::size_t>(static_cast<int>(pixel.y())) * W + static_cast<int>(pixel.x())]) {

@@ -58,6 +58,10 @@ struct RegistrationOptions {
     /// Scan depths farther than this (mm) from the approximation's are another surface (hair,
     /// shoulders, a scanning artefact) and are not used.
     double maxDisplacement = 15.0;
+    /// Use the scan only between the ears (obs_r to obs_l about the axis), as thesis 3.2.12.1
+    /// did: ears fold over themselves, which a depth map cannot hold, and behind them the
+    /// template's head is kept.
+    bool betweenEars = true;
     /// A vertex more than this (mm) below the approximation's outermost surface is Occluded.
     double occlusionTolerance = 0.5;
     FeaturePointLimits limits;

@@ -219,3 +219,39 @@ TEST_CASE("registerScan: only the chosen vertex range is registered, the rest ke
     REQUIRE_THROWS_WITH(registerScan(templ, templPoints, scan, test::headPoints(8.0), "scan.ply", options),
         Catch::Contains("registered vertices [100, 5000)"));
 }
+
+TEST_CASE("registerScan: the scan is used only between the ears unless told otherwise")
+{
+    const Mesh templ = test::makeHead(3);
+    const FeaturePoints templPoints = landmarkPositions(templ, test::headLandmarks(templ));
+    // A scan 2 mm larger all round, so every vertex that uses it moves.
+    Mesh scan = test::makeHead(4);
+    scan.V *= 1.02;
+    FeaturePoints points;
+    for (const auto& [name, p] : test::headPoints())
+        points[name] = 1.02 * p;
+    for (const bool betweenEars : { true, false }) {
+        RegistrationOptions options;
+        options.mapWidth = options.mapHeight = 128;
+        options.betweenEars = betweenEars;
+        const Registration r = registerScan(templ, templPoints, scan, points, "scan.ply", options);
+        const double earL = r.frame.toCylinder(points.at("obs_l"))(0), earR = r.frame.toCylinder(points.at("obs_r"))(0);
+        const double blend = (options.blendPixels + 1.5) * r.grid.dTheta(); // the seam blend, in radians
+        int behind = 0, behindMoved = 0;
+        for (Eigen::Index v = 0; v < templ.V.rows(); ++v) {
+            const Eigen::Vector3d thr = r.frame.toCylinder(r.approximation.row(v).transpose());
+            // Well behind the ears, beyond the blend, and away from the poles.
+            if ((thr(0) > earL + blend || thr(0) < earR - blend) && std::abs(thr(1)) < 40.0) {
+                ++behind;
+                if ((r.registered.row(v) - r.approximation.row(v)).norm() > 1e-6)
+                    ++behindMoved;
+            }
+        }
+        INFO("between ears " << betweenEars << ": " << behindMoved << " of " << behind << " vertices behind the ears moved");
+        REQUIRE(behind > 20);
+        if (betweenEars)
+            REQUIRE(behindMoved == 0);
+        else
+            REQUIRE(behindMoved > behind / 2);
+    }
+}
