@@ -51,6 +51,7 @@ const std::vector<Benchmark>& benchmarks()
         { "sketch",
             "one ~60-point stroke from the session file to the updated face on the synthetic low, high and ultra sets, with its parts",
             benchSketch },
+        { "register", "registering one 100,000-triangle scan onto a 6,000-vertex template: depth maps and projection", benchRegister },
     };
     return all;
 }

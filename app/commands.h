@@ -21,6 +21,9 @@ void addTrainCommand(CLI::App& root);
 void addEvalCommand(CLI::App& root);
 void addSketchCommand(CLI::App& root);
 void addStrokesCommand(CLI::App& root);
+void addRegisterCommand(CLI::App& root);
+/// `facesketch import scans`, a subcommand of `import` (cmd_import.cpp creates `import`).
+void addImportScansCommand(CLI::App& import);
 
 /// `facesketch eval contours`, a subcommand of `eval` (cmd_eval.cpp creates `eval`).
 void addEvalContoursCommand(CLI::App& eval);

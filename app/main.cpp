@@ -22,6 +22,8 @@ int main(int argc, char** argv)
     app::addEvalCommand(root);
     app::addSketchCommand(root);
     app::addStrokesCommand(root);
+    app::addRegisterCommand(root);
+    app::addImportScansCommand(*root.get_subcommand("import"));
 
     try {
         root.parse(argc, argv);

@@ -1,0 +1,283 @@
+#include "registration/register.h"
+
+#include "core/error.h"
+#include "registration/rbf.h"
+#include "registration/surface_query.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <numbers>
+
+namespace facesketch::registration {
+
+namespace {
+
+// The difference field D faded beyond the pixels that hold it: each pixel without data takes
+// the value of the nearest pixel with data (nearest by a breadth-first sweep, distance
+// Euclidean to that pixel) times max(0, 1 - distance / blend). `reach` gets that distance (0
+// on data, infinity beyond the blend).
+std::vector<double> blendBeyondData(const std::vector<double>& D, int width, int height, double blend, std::vector<double>& reach)
+{
+    const std::size_t n = D.size();
+    std::vector<int> source(n, -1);
+    reach.assign(n, std::numeric_limits<double>::infinity());
+    std::deque<int> queue;
+    for (std::size_t i = 0; i < n; ++i)
+        if (!std::isnan(D[i])) {
+            source[i] = static_cast<int>(i);
+            reach[i] = 0.0;
+            queue.push_back(static_cast<int>(i));
+        }
+    while (!queue.empty()) {
+        const int i = queue.front();
+        queue.pop_front();
+        const int x = i % width, y = i / width;
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                const int nx = x + dx, ny = y + dy;
+                if (nx < 0 || ny < 0 || nx >= width || ny >= height)
+                    continue;
+                const int j = ny * width + nx;
+                const int s = source[static_cast<std::size_t>(i)];
+                const double d = std::hypot(nx - s % width, ny - s / width);
+                if (d < reach[static_cast<std::size_t>(j)] && d < blend) {
+                    const bool fresh = source[static_cast<std::size_t>(j)] < 0;
+                    reach[static_cast<std::size_t>(j)] = d;
+                    source[static_cast<std::size_t>(j)] = s;
+                    if (fresh)
+                        queue.push_back(j);
+                }
+            }
+    }
+    std::vector<double> out(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i)
+        if (source[i] >= 0)
+            out[i] = D[static_cast<std::size_t>(source[i])] * std::max(0.0, 1.0 - reach[i] / blend);
+    return out;
+}
+
+// The angles of the right and left ear (obs_r, obs_l) about the axis, between which the scan is
+// used; the whole circle without them or when options.betweenEars is off.
+Eigen::Vector2d earAngles(const Registration& out, const RegistrationOptions& options)
+{
+    Eigen::Vector2d ears(-std::numbers::pi, std::numbers::pi);
+    const auto& names = out.points.names;
+    const auto l = std::find(names.begin(), names.end(), "obs_l"), r = std::find(names.begin(), names.end(), "obs_r");
+    if (options.betweenEars && l != names.end() && r != names.end()) {
+        ears(0) = out.frame.toCylinder(out.points.scanPoints.row(r - names.begin()).transpose())(0);
+        ears(1) = out.frame.toCylinder(out.points.scanPoints.row(l - names.begin()).transpose())(0);
+    }
+    return ears;
+}
+
+double readThesis(const std::vector<double>& field, int width, int height, const Eigen::Vector2d& pixel, double smoothing)
+{
+    const int cx = std::clamp(static_cast<int>(std::floor(pixel.x())), 0, width - 1);
+    const int cy = std::clamp(static_cast<int>(std::floor(pixel.y())), 0, height - 1);
+    const double fx = std::clamp(pixel.x() - cx, 0.0, 1.0), fy = std::clamp(pixel.y() - cy, 0.0, 1.0);
+    auto at
+        = [&](int x, int y) { return field[static_cast<std::size_t>(std::clamp(y, 0, height - 1)) * width + std::clamp(x, 0, width - 1)]; };
+    // Each neighbour weighs by how near the vertex is to it (thesis fig. 3.32).
+    const double leftRight = (1.0 - fx) * at(cx - 1, cy) + fx * at(cx + 1, cy);
+    const double topBottom = (1.0 - fy) * at(cx, cy - 1) + fy * at(cx, cy + 1);
+    return (1.0 - smoothing) * at(cx, cy) + smoothing * 0.5 * (leftRight + topBottom);
+}
+
+// `unwrapped` holds the registered vertices only, from template vertex `first` on.
+void registerByDepthMaps(const Mesh& scan, const Vertices& scanUnwrapped, const Triangles& templF, const Vertices& unwrapped, int first,
+    const RegistrationOptions& options, Registration& out)
+{
+    out.grid = gridAround(unwrapped, options.mapWidth, options.mapHeight);
+    const DepthMap approx = rasterizeDepth(unwrapped, templF, out.grid);
+    const DepthMap target = rasterizeDepth(scanUnwrapped, scan.F, out.grid);
+    const int W = out.grid.width, H = out.grid.height;
+    std::vector<double> D(approx.depth.size(), std::numeric_limits<double>::quiet_NaN());
+    const Eigen::Vector2d ears = earAngles(out, options);
+    for (std::size_t i = 0; i < D.size(); ++i) {
+        const double d = target.depth[i] - approx.depth[i];
+        const double theta = out.grid.centre(static_cast<int>(i % W), static_cast<int>(i / W))(0);
+        if (std::abs(d) <= options.maxDisplacement && theta >= ears(0) && theta <= ears(1))
+            D[i] = d;
+    }
+    std::vector<double> reach;
+    const std::vector<double> merged = blendBeyondData(D, W, H, options.blendPixels, reach);
+    const Eigen::Index nv = unwrapped.rows();
+    for (Eigen::Index v = 0; v < nv; ++v) {
+        const Eigen::Vector3d thr = unwrapped.row(v).transpose();
+        const Eigen::Vector2d pixel = out.grid.toPixel(thr(0), thr(1));
+        const int px = std::clamp(static_cast<int>(std::floor(pixel.x())), 0, W - 1);
+        const int py = std::clamp(static_cast<int>(std::floor(pixel.y())), 0, H - 1);
+        const std::size_t p = static_cast<std::size_t>(py) * W + px;
+        VertexSource label = reach[p] == 0.0 ? VertexSource::Scan
+            : std::isfinite(reach[p])        ? VertexSource::Blended
+                                             : VertexSource::Approximation;
+        if (approx.depth[p] > thr(2) + options.occlusionTolerance)
+            label = VertexSource::Occluded;
+        out.source[static_cast<std::size_t>(first + v)] = label;
+        if (label == VertexSource::Approximation)
+            continue; // out.registered already holds the approximation
+        double r = thr(2);
+        if (label == VertexSource::Scan && options.readBack == ReadBack::Plane) {
+            // The plane of the scan triangle seen at the vertex's pixel, at the vertex's own
+            // (theta, h): exact when the vertex lies over that triangle, and off by the
+            // surface's curvature over a fraction of a pixel otherwise, so no aliasing.
+            const int f = target.triangle[p];
+            Eigen::Vector2d q[3];
+            for (int k = 0; k < 3; ++k)
+                q[k] = scanUnwrapped.row(scan.F(f, k)).head<2>().transpose();
+            const Eigen::Vector2d at = thr.head<2>();
+            const double area = (q[1] - q[0]).x() * (q[2] - q[0]).y() - (q[1] - q[0]).y() * (q[2] - q[0]).x();
+            auto edge = [&](int i, int j) { return ((q[j] - q[i]).x() * (at - q[i]).y() - (q[j] - q[i]).y() * (at - q[i]).x()) / area; };
+            const double planeDepth = edge(1, 2) * scanUnwrapped(scan.F(f, 0), 2) + edge(2, 0) * scanUnwrapped(scan.F(f, 1), 2)
+                + edge(0, 1) * scanUnwrapped(scan.F(f, 2), 2);
+            r = planeDepth;
+        } else if (options.readBack == ReadBack::Thesis) {
+            r += readThesis(merged, W, H, pixel, options.smoothing);
+        } else {
+            r += sampleBilinear(merged, W, H, pixel);
+        }
+        out.registered.row(first + v) = out.frame.fromCylinder({ thr(0), thr(1), r }).transpose();
+    }
+}
+
+void registerByProjection(const Vertices& scanUnwrapped, const Triangles& scanF, const Vertices& unwrapped, int first,
+    const RegistrationOptions& options, Registration& out)
+{
+    // Buckets of scan triangles over the unwrapped plane, about 4 pixels of the map each.
+    DepthGrid buckets = gridAround(unwrapped, std::max(2, options.mapWidth / 4), std::max(2, options.mapHeight / 4));
+    out.grid = gridAround(unwrapped, options.mapWidth, options.mapHeight);
+    const int W = buckets.width, H = buckets.height;
+    std::vector<std::vector<int>> bucket(static_cast<std::size_t>(W) * H);
+    for (Eigen::Index f = 0; f < scanF.rows(); ++f) {
+        double t0 = std::numeric_limits<double>::infinity(), t1 = -t0, h0 = t0, h1 = -t0;
+        for (int k = 0; k < 3; ++k) {
+            const auto v = scanUnwrapped.row(scanF(f, k));
+            t0 = std::min(t0, v(0));
+            t1 = std::max(t1, v(0));
+            h0 = std::min(h0, v(1));
+            h1 = std::max(h1, v(1));
+        }
+        if (t1 - t0 > std::numbers::pi)
+            continue; // straddles the seam
+        const Eigen::Vector2d a = buckets.toPixel(t0, h1), b = buckets.toPixel(t1, h0);
+        if (b.x() < 0 || b.y() < 0 || a.x() >= W || a.y() >= H)
+            continue;
+        for (int y = std::max(0, static_cast<int>(a.y())); y <= std::min(H - 1, static_cast<int>(b.y())); ++y)
+            for (int x = std::max(0, static_cast<int>(a.x())); x <= std::min(W - 1, static_cast<int>(b.x())); ++x)
+                bucket[static_cast<std::size_t>(y) * W + x].push_back(static_cast<int>(f));
+    }
+    const Eigen::Vector2d ears = earAngles(out, options);
+    for (Eigen::Index v = 0; v < unwrapped.rows(); ++v) {
+        const Eigen::Vector3d thr = unwrapped.row(v).transpose();
+        const Eigen::Vector2d pixel = buckets.toPixel(thr(0), thr(1));
+        out.source[static_cast<std::size_t>(first + v)] = VertexSource::Approximation;
+        if (pixel.x() < 0 || pixel.y() < 0 || pixel.x() >= W || pixel.y() >= H || thr(0) < ears(0) || thr(0) > ears(1))
+            continue;
+        double best = std::numeric_limits<double>::infinity(), bestR = thr(2);
+        for (const int f : bucket[static_cast<std::size_t>(static_cast<int>(pixel.y())) * W + static_cast<int>(pixel.x())]) {
+            Eigen::Vector2d q[3];
+            for (int k = 0; k < 3; ++k)
+                q[k] = scanUnwrapped.row(scanF(f, k)).head<2>().transpose();
+            const Eigen::Vector2d p = thr.head<2>();
+            // Eq. 3.7: the barycentric coordinates of p in the unwrapped triangle.
+            const double area = (q[1] - q[0]).x() * (q[2] - q[0]).y() - (q[1] - q[0]).y() * (q[2] - q[0]).x();
+            if (!(std::abs(area) > 0.0))
+                continue;
+            auto edge = [&](int i, int j) { return ((q[j] - q[i]).x() * (p - q[i]).y() - (q[j] - q[i]).y() * (p - q[i]).x()) / area; };
+            const double w0 = edge(1, 2), w1 = edge(2, 0), w2 = edge(0, 1);
+            if (w0 < -1e-12 || w1 < -1e-12 || w2 < -1e-12)
+                continue;
+            const double r = w0 * scanUnwrapped(scanF(f, 0), 2) + w1 * scanUnwrapped(scanF(f, 1), 2) + w2 * scanUnwrapped(scanF(f, 2), 2);
+            if (std::abs(r - thr(2)) < best) {
+                best = std::abs(r - thr(2));
+                bestR = r;
+            }
+        }
+        if (best <= options.maxDisplacement) {
+            out.source[static_cast<std::size_t>(first + v)] = VertexSource::Scan;
+            out.registered.row(first + v) = out.frame.fromCylinder({ thr(0), thr(1), bestR }).transpose();
+        }
+    }
+}
+
+} // namespace
+
+const char* sourceName(VertexSource source)
+{
+    switch (source) {
+    case VertexSource::Scan:
+        return "scan";
+    case VertexSource::Blended:
+        return "blended";
+    case VertexSource::Approximation:
+        return "approximation";
+    case VertexSource::Occluded:
+        return "occluded";
+    }
+    return "?";
+}
+
+FeaturePoints landmarkPositions(const Mesh& templ, const std::map<std::string, int>& landmarks)
+{
+    FeaturePoints out;
+    for (const auto& [name, vertex] : landmarks) {
+        if (vertex < 0 || vertex >= templ.V.rows())
+            fail("template landmark '", name, "': vertex ", vertex, " outside [0, ", templ.V.rows(), ")");
+        out[name] = templ.V.row(vertex).transpose();
+    }
+    return out;
+}
+
+void checkRegistrationOptions(const RegistrationOptions& options, Eigen::Index templateVertices, const std::string& where)
+{
+    if (options.mapWidth < 8 || options.mapHeight < 8)
+        fail(where, ": depth maps of ", options.mapWidth, " x ", options.mapHeight, " pixels, at least 8 x 8 needed");
+    if (!(options.smoothing >= 0.0 && options.smoothing <= 1.0))
+        fail(where, ": smoothing ", options.smoothing, " outside [0, 1]");
+    if (!(options.blendPixels > 0.0) || !(options.maxDisplacement > 0.0))
+        fail(where, ": blend width and largest displacement must be positive");
+    const Eigen::Index end = options.endVertex < 0 ? templateVertices : options.endVertex;
+    if (options.firstVertex < 0 || options.firstVertex >= end || end > templateVertices)
+        fail(where, ": registered vertices [", options.firstVertex, ", ", end, ") not inside the template's [0, ", templateVertices, ")");
+}
+
+Registration registerScan(const Mesh& templ, const FeaturePoints& templatePoints, const Mesh& scan, const FeaturePoints& scanPoints,
+    const std::string& scanName, const RegistrationOptions& options)
+{
+    if (scan.F.rows() == 0 || scan.V.rows() == 0)
+        fail(scanName, ": the scan has no triangles");
+    validateMesh(scan, scanName);
+    validateMesh(templ, "the template");
+    checkRegistrationOptions(options, templ.V.rows(), scanName);
+    const int first = options.firstVertex, end = options.endVertex < 0 ? static_cast<int>(templ.V.rows()) : options.endVertex;
+    const SurfaceQuery surface(scan);
+    validateFeaturePoints(scanPoints, surface, scanName, options.limits);
+
+    Registration out;
+    out.points = completeFeaturePoints(templatePoints, scanPoints, scanName);
+    const RbfWarp rbf(out.points.templatePoints, out.points.scanPoints);
+    out.approximation = rbf.apply(templ.V);
+    out.registered = out.approximation;
+    out.source.assign(static_cast<std::size_t>(templ.V.rows()), VertexSource::Approximation);
+    out.frame = frameFromFeaturePoints(out.points.names, out.points.scanPoints);
+    const Vertices unwrapped = out.frame.unwrap(out.approximation.middleRows(first, end - first));
+    const Vertices scanUnwrapped = out.frame.unwrap(scan.V);
+    std::vector<int> kept;
+    for (Eigen::Index f = 0; f < templ.F.rows(); ++f)
+        if (templ.F.row(f).minCoeff() >= first && templ.F.row(f).maxCoeff() < end)
+            kept.push_back(static_cast<int>(f));
+    if (kept.empty())
+        fail(scanName, ": no template triangle among the registered vertices [", first, ", ", end, ")");
+    Triangles F(static_cast<Eigen::Index>(kept.size()), 3);
+    for (std::size_t i = 0; i < kept.size(); ++i)
+        F.row(static_cast<Eigen::Index>(i)) = templ.F.row(kept[i]).array() - first;
+    if (options.method == RegistrationMethod::DepthMaps)
+        registerByDepthMaps(scan, scanUnwrapped, F, unwrapped, first, options, out);
+    else
+        registerByProjection(scanUnwrapped, scan.F, unwrapped, first, options, out);
+    return out;
+}
+
+} // namespace facesketch::registration
