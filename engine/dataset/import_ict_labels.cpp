@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "dataset/import_ict.h"
+#include "geometry/graph.h"
 #include "geometry/normals.h"
 
 #include <algorithm>
@@ -22,58 +23,7 @@ namespace facesketch::dataset::ict {
 
 namespace {
 
-// Adjacency of the skin (vertices [0, skinEnd)) with edge lengths.
-using Graph = std::vector<std::vector<std::pair<int, double>>>;
-
-Graph skinGraph(const Vertices& V, const Triangles& F, int skinEnd)
-{
-    std::vector<std::set<int>> nb(static_cast<size_t>(skinEnd));
-    for (Eigen::Index f = 0; f < F.rows(); ++f)
-        for (int k = 0; k < 3; ++k) {
-            const int a = F(f, k), b = F(f, (k + 1) % 3);
-            if (a < skinEnd && b < skinEnd) {
-                nb[static_cast<size_t>(a)].insert(b);
-                nb[static_cast<size_t>(b)].insert(a);
-            }
-        }
-    Graph g(nb.size());
-    for (size_t a = 0; a < nb.size(); ++a)
-        for (int b : nb[a])
-            g[a].push_back({ b, (V.row(static_cast<Eigen::Index>(a)) - V.row(b)).norm() });
-    return g;
-}
-
-// Dijkstra from `from` to `to`; the vertex path including both ends.
-std::vector<int> shortestPath(const Graph& g, int from, int to)
-{
-    std::vector<double> dist(g.size(), std::numeric_limits<double>::infinity());
-    std::vector<int> prev(g.size(), -1);
-    using Item = std::pair<double, int>;
-    std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
-    dist[static_cast<size_t>(from)] = 0;
-    queue.push({ 0.0, from });
-    while (!queue.empty()) {
-        const auto [d, v] = queue.top();
-        queue.pop();
-        if (v == to)
-            break;
-        if (d > dist[static_cast<size_t>(v)])
-            continue;
-        for (const auto& [w, length] : g[static_cast<size_t>(v)])
-            if (d + length < dist[static_cast<size_t>(w)]) {
-                dist[static_cast<size_t>(w)] = d + length;
-                prev[static_cast<size_t>(w)] = v;
-                queue.push({ d + length, w });
-            }
-    }
-    if (from != to && prev[static_cast<size_t>(to)] < 0)
-        fail("import ict-facekit: no skin path from vertex ", from, " to ", to, " (region too small?)");
-    std::vector<int> path { to };
-    while (path.back() != from)
-        path.push_back(prev[static_cast<size_t>(path.back())]);
-    std::reverse(path.begin(), path.end());
-    return path;
-}
+using Graph = EdgeGraph;
 
 // Shortest path through `anchors` in order; `closed` also returns to the first (not repeated).
 std::vector<int> pathThrough(const Graph& g, const std::vector<int>& anchors, bool closed = false)
@@ -84,6 +34,8 @@ std::vector<int> pathThrough(const Graph& g, const std::vector<int>& anchors, bo
         stops.push_back(anchors.front());
     for (int to : stops) {
         const std::vector<int> leg = shortestPath(g, out.back(), to);
+        if (leg.empty())
+            fail("import ict-facekit: no skin path from vertex ", out.back(), " to ", to, " (region too small?)");
         out.insert(out.end(), leg.begin() + 1, leg.end());
     }
     if (closed)
@@ -120,7 +72,7 @@ Vertices normalsWithin(const Vertices& V, const Triangles& F, int begin, int end
 std::vector<int> nostrilRing(const Vertices& V, const Triangles& F, const Graph& g, const Vertices& normals, const std::vector<int>& pie,
     int side, std::vector<int>& hidden)
 {
-    const int skinEnd = static_cast<int>(g.size());
+    const int skinEnd = static_cast<int>(g.adjacency.size());
     const char* name = side > 0 ? "nostril_l" : "nostril_r";
     const int sbal = pie[side > 0 ? 35 : 31], sn = pie[33];
     // The nose base plane through both sbal and Multi-PIE 30; `out` leaves the nose through it
@@ -143,7 +95,7 @@ std::vector<int> nostrilRing(const Vertices& V, const Triangles& F, const Graph&
         while (!stack.empty()) {
             const int v = stack.back();
             stack.pop_back();
-            for (const auto& [w, length] : g[static_cast<size_t>(v)])
+            for (const auto& [w, length] : g.adjacency[static_cast<size_t>(v)])
                 if (!inside[static_cast<size_t>(w)] && keep(w)) {
                     inside[static_cast<size_t>(w)] = 1;
                     stack.push_back(w);
@@ -269,7 +221,7 @@ void labelSkinContours(Manifest& m, const Vertices& V, const std::vector<int>& p
 {
     auto y = [&](int v) { return V(v, 1); };
     auto& L = m.landmarks;
-    const Graph g = skinGraph(V, m.topology, skinEnd);
+    const Graph g = buildEdgeGraph(V, m.topology, skinEnd);
     auto& C = m.contours;
     C["eyebrow_r"] = pathThrough(g, { pie[21], pie[20], pie[19], pie[18], pie[17] });
     C["eyebrow_l"] = pathThrough(g, { pie[22], pie[23], pie[24], pie[25], pie[26] });

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <limits>
 #include <numeric>
+#include <queue>
+#include <set>
 
 namespace facesketch {
 
@@ -67,6 +69,64 @@ int RingDistances::hops(std::uint32_t i, std::uint32_t j) const
     if (it == end || *it != j)
         return -1;
     return hops_[static_cast<std::size_t>(it - targets_.begin())];
+}
+
+EdgeGraph buildEdgeGraph(const Vertices& V, const Triangles& F, Eigen::Index vertexLimit)
+{
+    if (vertexLimit < 0 || vertexLimit > V.rows())
+        fail("buildEdgeGraph: vertex limit ", vertexLimit, " outside [0, ", V.rows(), "]");
+    std::vector<std::set<int>> neighbours(static_cast<std::size_t>(vertexLimit));
+    for (Eigen::Index f = 0; f < F.rows(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int a = F(f, k), b = F(f, (k + 1) % 3);
+            if (a < 0 || b < 0 || a >= V.rows() || b >= V.rows())
+                fail("buildEdgeGraph: triangle ", f, " has a vertex index outside [0, ", V.rows(), ")");
+            if (a < vertexLimit && b < vertexLimit) {
+                neighbours[static_cast<std::size_t>(a)].insert(b);
+                neighbours[static_cast<std::size_t>(b)].insert(a);
+            }
+        }
+    EdgeGraph g;
+    g.adjacency.resize(neighbours.size());
+    for (std::size_t a = 0; a < neighbours.size(); ++a)
+        for (int b : neighbours[a])
+            g.adjacency[a].push_back({ b, (V.row(static_cast<Eigen::Index>(a)) - V.row(b)).norm() });
+    return g;
+}
+
+std::vector<int> shortestPath(const EdgeGraph& graph, int from, int to)
+{
+    const auto& g = graph.adjacency;
+    const int n = static_cast<int>(g.size());
+    if (from < 0 || to < 0 || from >= n || to >= n)
+        fail("shortestPath: vertices ", from, " and ", to, " must lie in [0, ", n, ")");
+    std::vector<double> dist(g.size(), std::numeric_limits<double>::infinity());
+    std::vector<int> prev(g.size(), -1);
+    using Item = std::pair<double, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+    dist[static_cast<std::size_t>(from)] = 0;
+    queue.push({ 0.0, from });
+    while (!queue.empty()) {
+        const auto [d, v] = queue.top();
+        queue.pop();
+        if (v == to)
+            break;
+        if (d > dist[static_cast<std::size_t>(v)])
+            continue;
+        for (const auto& [w, length] : g[static_cast<std::size_t>(v)])
+            if (d + length < dist[static_cast<std::size_t>(w)]) {
+                dist[static_cast<std::size_t>(w)] = d + length;
+                prev[static_cast<std::size_t>(w)] = v;
+                queue.push({ d + length, w });
+            }
+    }
+    if (from != to && prev[static_cast<std::size_t>(to)] < 0)
+        return {};
+    std::vector<int> path { to };
+    while (path.back() != from)
+        path.push_back(prev[static_cast<std::size_t>(path.back())]);
+    std::reverse(path.begin(), path.end());
+    return path;
 }
 
 } // namespace facesketch

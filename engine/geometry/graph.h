@@ -13,6 +13,7 @@
 #include "core/mesh.h"
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace facesketch {
@@ -38,5 +39,22 @@ private:
     std::vector<std::uint32_t> targets_; // ascending within a row
     std::vector<std::uint8_t> hops_;     // beside targets_
 };
+
+/// The edge graph of a mesh weighted by edge length: adjacency[a] holds (b, |V_a - V_b|) for
+/// every vertex b sharing a triangle edge with a, b ascending. Only vertices below
+/// `vertexLimit` take part (an edge with an end at or past it is left out), so a component that
+/// comes first in the vertex order (a dataset's skin) can be walked alone.
+struct EdgeGraph {
+    std::vector<std::vector<std::pair<int, double>>> adjacency; ///< vertexLimit rows, mm
+};
+
+/// V: #V by 3 positions (mm); F: #F by 3 triangles with indices in [0, #V); 0 <= vertexLimit <= #V.
+EdgeGraph buildEdgeGraph(const Vertices& V, const Triangles& F, Eigen::Index vertexLimit);
+
+/// Dijkstra (1959): the shortest vertex path from `from` to `to` along the graph's edges, both
+/// ends included ({from} when they are equal), or empty if `to` cannot be reached. Among paths
+/// of equal length the one the priority queue settles first wins, deterministically. Throws
+/// Error for a vertex outside the graph.
+std::vector<int> shortestPath(const EdgeGraph& graph, int from, int to);
 
 } // namespace facesketch

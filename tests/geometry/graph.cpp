@@ -4,6 +4,7 @@
 
 #include <array>
 #include <catch2/catch.hpp>
+#include <cmath>
 
 using namespace facesketch;
 
@@ -62,4 +63,29 @@ TEST_CASE("graph: hand-made fan, isolated vertices and bad input")
     CHECK(rings.entries() == 6 * 6 + 1); // 0..5 reach each other within 2 hops; 6 only itself
     REQUIRE_THROWS_WITH(RingDistances(F, 4, 4), Catch::Contains("triangle 2"));
     REQUIRE_THROWS_WITH(RingDistances(F, 7, -1), Catch::Contains("k = -1"));
+}
+
+TEST_CASE("graph: shortestPath follows the shorter side of a square and respects the vertex limit")
+{
+    // A unit square split by the diagonal 0-2, plus vertex 4 far off joined to 3 only.
+    Vertices V(5, 3);
+    V << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 5, 0;
+    Triangles F(3, 3);
+    F << 0, 1, 2, 0, 2, 3, 3, 2, 4;
+    const EdgeGraph g = buildEdgeGraph(V, F, 5);
+    REQUIRE(g.adjacency[0].size() == 3);
+    REQUIRE(g.adjacency[0][1].first == 2);
+    REQUIRE(g.adjacency[0][1].second == Approx(std::sqrt(2.0)));
+    REQUIRE(shortestPath(g, 0, 2) == std::vector<int> { 0, 2 }); // the diagonal, sqrt 2 < 2
+    REQUIRE(shortestPath(g, 1, 4) == std::vector<int> { 1, 2, 4 });
+    REQUIRE(shortestPath(g, 3, 3) == std::vector<int> { 3 });
+    // Below a limit of 4, vertex 4 is not part of the graph; a vertex with no edge cannot be
+    // reached.
+    const EdgeGraph skin = buildEdgeGraph(V, F, 4);
+    REQUIRE(skin.adjacency.size() == 4);
+    REQUIRE_THROWS_WITH(shortestPath(skin, 0, 4), Catch::Contains("must lie in"));
+    Triangles island(1, 3);
+    island << 0, 1, 2;
+    REQUIRE(shortestPath(buildEdgeGraph(V, island, 4), 0, 3).empty());
+    REQUIRE_THROWS_WITH(buildEdgeGraph(V, F, 6), Catch::Contains("vertex limit 6"));
 }

@@ -3,8 +3,8 @@
 #include "model/head_assembly.h"
 
 #include "core/error.h"
-#include "geometry/similarity.h"
 #include "core/random.h"
+#include "geometry/similarity.h"
 
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
@@ -12,7 +12,6 @@
 using namespace facesketch;
 using namespace facesketch::model;
 using stats::HeadLayout;
-
 
 namespace {
 
