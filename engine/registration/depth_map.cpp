@@ -122,7 +122,9 @@ DepthMap rasterizeDepth(const Vertices& unwrapped, const Triangles& F, const Dep
                     continue;
                 const double depth = w0 * r[0] + w1 * r[1] + w2 * r[2];
                 const std::size_t i = static_cast<std::size_t>(y) * grid.width + x;
-                if (!(depth <= map.depth[i])) { // also true where the pixel is still NaN
+                // An empty pixel holds NaN; test it first, since an ordered comparison with NaN raises
+                // the invalid-operation flag (a trap where floating-point exceptions are on).
+                if (std::isnan(map.depth[i]) || depth > map.depth[i]) {
                     map.depth[i] = depth;
                     map.triangle[i] = static_cast<int>(f);
                 }

@@ -98,7 +98,8 @@ void registerByDepthMaps(const Mesh& scan, const Vertices& scanUnwrapped, const 
     for (std::size_t i = 0; i < D.size(); ++i) {
         const double d = target.depth[i] - approx.depth[i];
         const double theta = out.grid.centre(static_cast<int>(i % W), static_cast<int>(i / W))(0);
-        if (std::abs(d) <= options.maxDisplacement && theta >= ears(0) && theta <= ears(1))
+        // Either map may be empty (NaN) here: islessequal compares without raising a flag.
+        if (std::islessequal(std::abs(d), options.maxDisplacement) && theta >= ears(0) && theta <= ears(1))
             D[i] = d;
     }
     std::vector<double> reach;
@@ -113,7 +114,7 @@ void registerByDepthMaps(const Mesh& scan, const Vertices& scanUnwrapped, const 
         VertexSource label = reach[p] == 0.0 ? VertexSource::Scan
             : std::isfinite(reach[p])        ? VertexSource::Blended
                                              : VertexSource::Approximation;
-        if (approx.depth[p] > thr(2) + options.occlusionTolerance)
+        if (std::isgreater(approx.depth[p], thr(2) + options.occlusionTolerance)) // NaN: no approximation there
             label = VertexSource::Occluded;
         out.source[static_cast<std::size_t>(first + v)] = label;
         if (label == VertexSource::Approximation)

@@ -132,7 +132,8 @@ ClosestPoint SurfaceQuery::closest(const Eigen::Vector3d& p) const
     }
     Eigen::Vector3i c0;
     for (int k = 0; k < 3; ++k)
-        c0(k) = std::clamp(static_cast<int>(std::floor((p(k) - lower_(k)) / cellSize_(k))), 0, cells_(k) - 1);
+        // Clamped before the conversion: a far point's cell index may not fit an int.
+        c0(k) = static_cast<int>(std::clamp(std::floor((p(k) - lower_(k)) / cellSize_(k)), 0.0, static_cast<double>(cells_(k) - 1)));
     ClosestPoint best;
     best.distance = std::numeric_limits<double>::infinity();
     Eigen::Vector3d bestBary = Eigen::Vector3d::Zero();
