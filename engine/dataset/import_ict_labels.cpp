@@ -262,7 +262,7 @@ void labelSkinMpeg4(Manifest& m, const Vertices& V, const std::vector<int>& pie,
     auto z = [&](int v) { return V(v, 2); };
     auto& L = m.landmarks;
     auto& M = m.mpeg4;
-    M["2.1"] = L["gn"];
+    labelMpeg4FromLandmarks(m);
     M["2.2"] = pie[62];
     M["2.3"] = pie[66];
     M["2.4"] = pie[64];
@@ -271,15 +271,6 @@ void labelSkinMpeg4(Manifest& m, const Vertices& V, const std::vector<int>& pie,
     M["2.7"] = pie[61];
     M["2.8"] = pie[65];
     M["2.9"] = pie[67];
-    M["2.10"] = L["pg"];
-    M["3.1"] = L["ps_l"];
-    M["3.2"] = L["ps_r"];
-    M["3.3"] = L["pi_l"];
-    M["3.4"] = L["pi_r"];
-    M["3.7"] = L["ex_l"];
-    M["3.12"] = L["ex_r"];
-    M["3.11"] = L["en_l"];
-    M["3.8"] = L["en_r"];
     M["4.1"] = pie[22];
     M["4.2"] = pie[21];
     M["4.3"] = pie[24];

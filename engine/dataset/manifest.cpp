@@ -378,4 +378,17 @@ void writeManifest(const std::filesystem::path& path, const Manifest& m)
     });
 }
 
+void labelMpeg4FromLandmarks(Manifest& manifest)
+{
+    static const std::pair<const char*, const char*> fromLandmark[]
+        = { { "2.1", "gn" }, { "2.10", "pg" }, { "3.1", "ps_l" }, { "3.2", "ps_r" }, { "3.3", "pi_l" }, { "3.4", "pi_r" },
+              { "3.7", "ex_l" }, { "3.12", "ex_r" }, { "3.11", "en_l" }, { "3.8", "en_r" } };
+    for (const auto& [point, landmark] : fromLandmark) {
+        const auto it = manifest.landmarks.find(landmark);
+        if (it == manifest.landmarks.end())
+            fail("MPEG-4 point ", point, ": the manifest has no landmark '", landmark, "'");
+        manifest.mpeg4[point] = it->second;
+    }
+}
+
 } // namespace facesketch::dataset

@@ -91,4 +91,10 @@ Manifest readManifest(const std::filesystem::path& path);
 /// so the same manifest always gives the same bytes.
 void writeManifest(const std::filesystem::path& path, const Manifest& manifest);
 
+/// Sets the MPEG-4 feature points that are anthropometric landmarks (ISO/IEC 14496-2 Annex C,
+/// thesis 5.2): 2.1 gn, 2.10 pg, 3.1 / 3.2 ps_l / ps_r, 3.3 / 3.4 pi_l / pi_r, 3.7 / 3.12
+/// ex_l / ex_r, 3.11 / 3.8 en_l / en_r. Every source labels the rest its own way. Throws Error
+/// naming the first of these landmarks the manifest lacks.
+void labelMpeg4FromLandmarks(Manifest& manifest);
+
 } // namespace facesketch::dataset

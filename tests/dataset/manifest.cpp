@@ -143,3 +143,21 @@ TEST_CASE("manifest: splitRoles is the thesis' 182/48/20 split")
     REQUIRE(splitRoles(1)[0] == Role::Train);
     REQUIRE_THROWS_WITH(splitRoles(0), Catch::Contains("--identities 0"));
 }
+
+TEST_CASE("manifest: the MPEG-4 points that are landmarks take the landmarks' vertices, and a missing one is named")
+{
+    Manifest m;
+    int v = 0;
+    for (const char* name : { "gn", "pg", "ps_l", "ps_r", "pi_l", "pi_r", "ex_l", "ex_r", "en_l", "en_r" })
+        m.landmarks[name] = 10 * ++v;
+    labelMpeg4FromLandmarks(m);
+    REQUIRE(m.mpeg4.size() == 10);
+    REQUIRE(m.mpeg4.at("2.1") == m.landmarks.at("gn"));
+    REQUIRE(m.mpeg4.at("2.10") == m.landmarks.at("pg"));
+    REQUIRE(m.mpeg4.at("3.7") == m.landmarks.at("ex_l"));
+    REQUIRE(m.mpeg4.at("3.12") == m.landmarks.at("ex_r"));
+    REQUIRE(m.mpeg4.at("3.11") == m.landmarks.at("en_l"));
+    REQUIRE(m.mpeg4.at("3.8") == m.landmarks.at("en_r"));
+    m.landmarks.erase("pi_r");
+    REQUIRE_THROWS_WITH(labelMpeg4FromLandmarks(m), Catch::Contains("MPEG-4 point 3.4") && Catch::Contains("'pi_r'"));
+}

@@ -312,7 +312,7 @@ void labelMpeg4(FaceTopology& t)
     const auto& C = m.contours;
     auto& M = m.mpeg4;
     auto& L = m.landmarks;
-    M["2.1"] = L["gn"];
+    labelMpeg4FromLandmarks(m);
     M["2.2"] = g(kSto, 0);
     M["2.3"] = low(kSto, 0);
     M["2.4"] = g(kSto, t.sCh - 1);
@@ -321,15 +321,6 @@ void labelMpeg4(FaceTopology& t)
     M["2.7"] = g(kSto, -t.sCh / 2);
     M["2.8"] = low(kSto, t.sCh / 2);
     M["2.9"] = low(kSto, -t.sCh / 2);
-    M["2.10"] = L["pg"];
-    M["3.1"] = L["ps_l"];
-    M["3.2"] = L["ps_r"];
-    M["3.3"] = L["pi_l"];
-    M["3.4"] = L["pi_r"];
-    M["3.7"] = L["ex_l"];
-    M["3.12"] = L["ex_r"];
-    M["3.11"] = L["en_l"];
-    M["3.8"] = L["en_r"];
     M["4.1"] = g(kBrow, t.sEn);
     M["4.2"] = g(kBrow, -t.sEn);
     M["4.3"] = g(kBrow, sEye);
