@@ -7,6 +7,7 @@
 #include "geometry/grid_index.h"
 #include "geometry/mesh_batch.h"
 #include "sketch/mappers.h"
+#include "sketch/stroke_candidates.h"
 
 #include <algorithm>
 #include <cmath>
@@ -101,11 +102,7 @@ std::vector<ContourEvalResult> evaluateContours(gpu::Device& device, const Conto
         const std::vector<Candidate> cloud = cloudBuilder.build(camera, params);
         const GridIndex index(sketch::screenPositions(cloud), 8.0);
         // Rows of the view's rotation: a point's 2D position in the view plane, in mm.
-        Eigen::Matrix<double, 2, 3> P;
-        for (int c = 0; c < 3; ++c) {
-            P(0, c) = camera.view[c][0];
-            P(1, c) = camera.view[c][1];
-        }
+        const Eigen::Matrix<double, 2, 3> P = sketch::viewPlaneRows(camera);
 
         for (size_t f = 0; f < data.testFaces.size(); ++f) {
             const Mesh& face = data.testFaces[f];

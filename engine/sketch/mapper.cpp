@@ -175,13 +175,13 @@ StrokeReading StrokeReader::read(const Stroke& stroke, const Mesh& currentFace, 
     reading.chosen.assign(n, -1);
 
     const Eigen::Vector3d centre = 0.5 * (currentFace.V.colwise().minCoeff() + currentFace.V.colwise().maxCoeff()).transpose();
-    const double tau = params.tauMm * pixelsPerMm(camera, centre);
+    const double ppmm = pixelsPerMm(camera, centre);
+    const double tau = params.tauMm * ppmm;
     const double radiusPx = params.candidateRadiusTau * tau;
 
     ContourParams contour;
     contour.silhouetteThreshold = defaultSilhouetteThreshold(nv);
     contour.featureSize = impl_->featureSize;
-    const double ppmm = pixelsPerMm(camera, centre);
     if (!strokeBox(contour, camera, projected.screen, projected.world, radiusPx, std::hypot(radiusPx / ppmm, params.depthToleranceMm))) {
         reading.message = "no point of the stroke lies on screen: nothing read";
         timing_ = { clock.milliseconds(), 0 };

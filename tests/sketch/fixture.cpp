@@ -52,9 +52,7 @@ const SketchWorld& sketchWorld()
                 out.push_back(v - skin->begin);
     }
     world->mean.F = skinF;
-    world->mean.V.resize(world->model.vertexCount(), 3);
-    for (Eigen::Index v = 0; v < world->model.vertexCount(); ++v)
-        world->mean.V.row(v) = world->model.meanFace.segment<3>(3 * v).transpose();
+    world->mean.V = asVertices(world->model.meanFace);
     return *world;
 }
 
