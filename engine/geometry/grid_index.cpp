@@ -106,26 +106,24 @@ int GridIndex::nearest(const Eigen::Vector2d& q) const
     return best;
 }
 
+bool GridIndex::cellRange(const Eigen::Vector2d& q, double radius, long& xa, long& xb, long& ya, long& yb) const
+{
+    if (points_.empty() || !(radius >= 0) || !std::isfinite(q.x()) || !std::isfinite(q.y()))
+        return false;
+    // Entirely outside the grid's box by more than the radius: nothing.
+    if (q.x() + radius < x0_ || q.x() - radius > x0_ + columns_ * cell_ || q.y() + radius < y0_ || q.y() - radius > y0_ + rows_ * cell_)
+        return false;
+    xa = cellX(q.x() - radius);
+    xb = cellX(q.x() + radius);
+    ya = cellY(q.y() - radius);
+    yb = cellY(q.y() + radius);
+    return true;
+}
+
 std::vector<int> GridIndex::withinRadius(const Eigen::Vector2d& q, double radius) const
 {
     std::vector<int> out;
-    if (points_.empty() || !(radius >= 0) || !std::isfinite(q.x()) || !std::isfinite(q.y()))
-        return out;
-    // Entirely outside the grid's box by more than the radius: nothing.
-    if (q.x() + radius < x0_ || q.x() - radius > x0_ + columns_ * cell_ || q.y() + radius < y0_ || q.y() - radius > y0_ + rows_ * cell_)
-        return out;
-    const long xa = cellX(q.x() - radius), xb = cellX(q.x() + radius);
-    const long ya = cellY(q.y() - radius), yb = cellY(q.y() + radius);
-    const double r2 = radius * radius;
-    for (long y = ya; y <= yb; ++y)
-        for (long x = xa; x <= xb; ++x) {
-            const std::size_t c = static_cast<std::size_t>(y * columns_ + x);
-            for (int k = offsets_[c]; k < offsets_[c + 1]; ++k) {
-                const int i = items_[static_cast<std::size_t>(k)];
-                if ((points_[static_cast<std::size_t>(i)] - q).squaredNorm() <= r2)
-                    out.push_back(i);
-            }
-        }
+    forEachWithinRadius(q, radius, [&](int i, double) { out.push_back(i); });
     std::sort(out.begin(), out.end());
     return out;
 }

@@ -74,22 +74,23 @@ std::vector<std::vector<int>> candidatesPerPoint(const std::vector<Candidate>& c
     std::vector<Eigen::Vector2d> at(cloud.size());
     for (std::size_t i = 0; i < cloud.size(); ++i)
         at[i] = Eigen::Vector2d(cloud[i].screen[0], cloud[i].screen[1]);
-    const GridIndex index(at, std::max(radiusPx, 1.0));
+    // One-pixel cells (the index grows them when the cloud is sparse): a point's few dozen
+    // nearest candidates sit in the cells around it, where a disc of radius 2 tau holds
+    // thousands (a face's contours stacked over hundreds of training faces).
+    const GridIndex index(at, 1.0);
     const Eigen::Vector3d axis = viewAxis(camera);
+    std::vector<double> depth(cloud.size());
+    for (std::size_t c = 0; c < cloud.size(); ++c)
+        depth[c] = axis.x() * cloud[c].world[0] + axis.y() * cloud[c].world[1] + axis.z() * cloud[c].world[2];
+    const std::size_t keep = static_cast<std::size_t>(std::max(maxPerPoint, 0));
     std::vector<std::pair<double, int>> found;
     for (std::size_t i = 0; i < screen.size(); ++i) {
-        found.clear();
         const double pointDepth = axis.dot(world[i]);
-        for (int c : index.withinRadius(screen[i], radiusPx)) {
-            const Candidate& k = cloud[static_cast<std::size_t>(c)];
-            const double depth = axis.x() * k.world[0] + axis.y() * k.world[1] + axis.z() * k.world[2];
-            if (std::abs(depth - pointDepth) <= depthToleranceMm)
-                found.push_back({ (at[static_cast<std::size_t>(c)] - screen[i]).squaredNorm(), c });
-        }
-        const std::size_t keep = std::min(found.size(), static_cast<std::size_t>(std::max(maxPerPoint, 0)));
-        std::partial_sort(found.begin(), found.begin() + static_cast<std::ptrdiff_t>(keep), found.end());
-        for (std::size_t k = 0; k < keep; ++k)
-            out[i].push_back(found[k].second);
+        index.nearestWithin(
+            screen[i], radiusPx, keep, [&](int c) { return std::abs(depth[static_cast<std::size_t>(c)] - pointDepth) <= depthToleranceMm; },
+            found);
+        for (const auto& f : found)
+            out[i].push_back(f.second);
     }
     return out;
 }

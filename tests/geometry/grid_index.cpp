@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "core/random.h"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 
 using namespace facesketch;
@@ -43,6 +44,14 @@ TEST_CASE("grid_index: nearest and within-radius agree with brute force, queries
                     if ((points[i] - q).squaredNorm() <= r * r)
                         expected.push_back(static_cast<int>(i));
                 REQUIRE(index.withinRadius(q, r) == expected);
+                // The visitor sees the same points once each, with their squared distances.
+                std::vector<int> visited;
+                index.forEachWithinRadius(q, r, [&](int i, double d2) {
+                    REQUIRE(d2 == (points[static_cast<std::size_t>(i)] - q).squaredNorm());
+                    visited.push_back(i);
+                });
+                std::sort(visited.begin(), visited.end());
+                REQUIRE(visited == expected);
             }
         }
     }
@@ -68,4 +77,38 @@ TEST_CASE("grid_index: ties go to the lowest index, empty sets answer nothing, b
 
     REQUIRE_THROWS_WITH(GridIndex({ { 0, 0 }, { std::nan(""), 1 } }, 1.0), Catch::Contains("point 1"));
     REQUIRE_THROWS_WITH(GridIndex(points, 0.0), Catch::Contains("cell size 0"));
+}
+
+TEST_CASE("grid_index: the k nearest accepted points within a radius agree with brute force, cells of any size")
+{
+    // A dense cluster (thousands in a disc, like stacked contours) plus a sparse spread.
+    auto points = randomPoints(3000, 21, 6.0);
+    for (const Eigen::Vector2d& p : randomPoints(400, 22, 120.0))
+        points.push_back(p);
+    points.push_back(points[5]); // an exact duplicate: the tie goes to the lower index
+    auto accept = [](int i) { return i % 3 != 1; };
+    for (double cell : { 0.25, 1.0, 16.0 }) {
+        const GridIndex index(points, cell);
+        std::vector<std::pair<double, int>> found;
+        for (const Eigen::Vector2d& q : randomPoints(150, 23, 200.0))
+            for (double r : { 0.0, 2.0, 40.0 })
+                for (std::size_t k : { std::size_t { 1 }, std::size_t { 48 }, std::size_t { 5000 } }) {
+                    std::vector<std::pair<double, int>> expected;
+                    for (std::size_t i = 0; i < points.size(); ++i) {
+                        const double d2 = (points[i] - q).squaredNorm();
+                        if (d2 <= r * r && accept(static_cast<int>(i)))
+                            expected.push_back({ d2, static_cast<int>(i) });
+                    }
+                    std::sort(expected.begin(), expected.end());
+                    expected.resize(std::min(expected.size(), k));
+                    index.nearestWithin(q, r, k, accept, found);
+                    INFO("cell " << cell << " query " << q.transpose() << " radius " << r << " k " << k);
+                    REQUIRE(found == expected);
+                }
+        index.nearestWithin(
+            points[5], 0.0, 2, [](int) { return true; }, found);
+        REQUIRE(found.size() == 2);
+        CHECK(found[0].second == 5);
+        CHECK(found[1].second == static_cast<int>(points.size()) - 1);
+    }
 }
