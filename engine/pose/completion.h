@@ -3,12 +3,14 @@
 // displacements, pose_data.h) fills in the feature points a user did not draw, by the
 // conditional mean under the most probable component (stats/conditional.h, thesis 4.2.1.6).
 //
-// Choosing the number of components (thesis 5.4): fit mixtures of K = 1..m components (each with
-// a few latent dimensions q, see CompletionOptions) and keep the one that best rebuilds whole poses from a table of minimal incomplete
-// poses (minimal_poses.h), i.e. the smallest total error xi_K = sum_i |r_i - p_i| over the table's entries, here on every validation
-// identity; the training log-likelihood is recorded beside it. Two mixtures with close errors may read an ambiguous input differently (a
-// wide upper lip: open or closed smile, figs. 5.10 and 5.11); the second-best K is kept as the alternative interpretation the user may
-// switch to.
+// Choosing the number of components (thesis 5.4): fit mixtures of K = 1..m components (each
+// with a few latent dimensions q, see CompletionOptions) and keep the one that best rebuilds
+// whole poses from a table of minimal incomplete poses (minimal_poses.h), i.e. the smallest total
+// error xi_K = sum_i |r_i - p_i| over the table's entries, here on every validation identity;
+// the training log-likelihood is recorded beside it. Two mixtures with close errors may read an
+// ambiguous input differently (a wide upper lip: open or closed smile, figs. 5.10 and 5.11); the
+// best fit with another number of components is kept as the alternative interpretation the user
+// may switch to.
 //
 // Everything is in double precision; no 3F by 3F covariance is formed (stats/mppca.h).
 
