@@ -12,6 +12,7 @@ namespace facesketch::gpu {
 enum class MemoryUse {
     Device,   ///< GPU-local; mapped too when the device shares memory with the host (lavapipe, UMA)
     Readback, ///< host-visible, cached when possible: the GPU writes, the CPU reads
+    Upload,   ///< host-visible (always mapped), device-local when possible: the CPU writes, the GPU reads
 };
 
 struct Buffer {
@@ -28,8 +29,10 @@ void destroyBuffer(Device& device, Buffer& buffer);
 /// Copies `size` bytes from host `data` to `buffer` at `offset`: by memcpy when the buffer is
 /// mapped, otherwise through a staging buffer and a queue submission. Waits until done.
 void uploadBuffer(Device& device, Buffer& buffer, const void* data, std::size_t size, VkDeviceSize offset = 0);
-/// Copies `size` bytes of `buffer` at `offset` to host `data`; waits for the queue to be idle
-/// first, so all previously submitted writes are visible.
+/// Copies `size` bytes of `buffer` at `offset` to host `data`. The GPU writes to it must have
+/// finished and been made visible to the host: submitAndWait waits on the fence of its own
+/// submission, so record hostReadBarrier at the end of the commands that wrote it. Nothing here
+/// waits for the queue, so a window's frames in flight are never stalled by a readback.
 void readbackBuffer(Device& device, const Buffer& buffer, void* data, std::size_t size, VkDeviceSize offset = 0);
 
 /// A typed view of a buffer, bound as a uniform texel buffer (GLSL `samplerBuffer`,
@@ -43,9 +46,9 @@ struct TexelView {
     VkDeviceSize elements = 0; ///< texels in the view
 };
 
-/// A view of all of `buffer` as texels of `format`: one of the 32-bit-per-channel formats
-/// R32_UINT, R32G32_UINT, R32G32B32A32_UINT and R32G32B32A32_SFLOAT, which every device can
-/// fetch from. Throws Error for another format, a buffer that is not a whole number of texels,
+/// A view of all of `buffer` as texels of `format`: one of R32_UINT, R32G32_UINT,
+/// R32G32B32A32_UINT, R32G32B32A32_SFLOAT and R8G8B8A8_UNORM (RGBA bytes), which every device
+/// can fetch from. Throws Error for another format, a buffer that is not a whole number of texels,
 /// or more texels than the device's maxTexelBufferElements.
 TexelView createTexelView(Device& device, const Buffer& buffer, VkFormat format);
 void destroyTexelView(Device& device, TexelView& view);
