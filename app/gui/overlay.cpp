@@ -9,7 +9,7 @@
 
 namespace facesketch::gui {
 
-RgbaImage heatImage(const std::vector<Candidate>& candidates, int width, int height, const HeatOptions& options)
+Image heatImage(const std::vector<Candidate>& candidates, int width, int height, const HeatOptions& options)
 {
     if (width <= 0 || height <= 0)
         fail("overlay: image size ", width, "x", height, " must be positive");
@@ -46,10 +46,10 @@ RgbaImage heatImage(const std::vector<Candidate>& candidates, int width, int hei
     const std::vector<double> density = blur(blur(count, true), false);
     const double peak = *std::max_element(density.begin(), density.end());
 
-    RgbaImage image;
+    Image image;
     image.width = width;
     image.height = height;
-    image.rgba.assign(static_cast<size_t>(width) * height * 4, 0);
+    image.pixels.assign(static_cast<size_t>(width) * height * 4, 0);
     if (!(peak > 0))
         return image;
     for (int y = 0; y < height; ++y)
@@ -58,7 +58,7 @@ RgbaImage heatImage(const std::vector<Candidate>& candidates, int width, int hei
             if (t < options.clearBelow)
                 continue;
             const glm::vec4 c = blueToRed(t);
-            std::uint8_t* p = &image.rgba[(static_cast<size_t>(y) * width + x) * 4];
+            std::uint8_t* p = &image.pixels[(static_cast<size_t>(y) * width + x) * 4];
             p[0] = static_cast<std::uint8_t>(std::lround(255 * c.r));
             p[1] = static_cast<std::uint8_t>(std::lround(255 * c.g));
             p[2] = static_cast<std::uint8_t>(std::lround(255 * c.b));

@@ -7,6 +7,7 @@
 #include "contours/candidates_gpu.h"
 #include "contours/curvature_gpu.h"
 #include "core/mesh.h"
+#include "io/png.h"
 
 #include <cstdint>
 #include <filesystem>
@@ -26,17 +27,11 @@ struct HeatOptions {
     double maxAlpha = 0.7;
 };
 
-/// An RGBA8 image, row-major from the top-left pixel.
-struct RgbaImage {
-    int width = 0, height = 0;
-    std::vector<std::uint8_t> rgba; ///< width * height * 4
-};
-
-/// The heat image (width x height pixels) of the candidates' screen positions: per cell the
+/// The heat image (RGBA, width x height pixels) of the candidates' screen positions: per cell the
 /// count, smoothed, divided by the peak and coloured blue (low) to red (high)
 /// (render/colormap.h) with opacity rising with density; clear where there are no candidates.
 /// Throws Error for a non-positive size or cell.
-RgbaImage heatImage(const std::vector<Candidate>& candidates, int width, int height, const HeatOptions& options = {});
+Image heatImage(const std::vector<Candidate>& candidates, int width, int height, const HeatOptions& options = {});
 
 /// The candidate cloud of a set of faces on one topology, for any view: the one-time curvature
 /// pass (cached in `cacheFolder`, contours/curvature_cache.h; empty: not cached) and a
