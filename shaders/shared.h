@@ -103,6 +103,13 @@ using mat4 = glm::mat4;
     float pointSize;   /* pixels */                                                                                                        \
     float depthOffset; /* pulls lines and points towards the camera, in NDC depth units */
 
+// Push constants of overlay.frag: the overlay image's size and the viewport's, in pixels.
+#define OVERLAY_CONSTANTS_MEMBERS                                                                                                          \
+    uint imageWidth;                                                                                                                       \
+    uint imageHeight;                                                                                                                      \
+    float targetWidth;                                                                                                                     \
+    float targetHeight;
+
 // The per-view contour tests and the candidate cloud (thesis 4.3, 4.4) in two passes, so that
 // the suggestive zero-crossing test reads one word per neighbour instead of recomputing its
 // radial curvature (engine/contours/candidates_gpu.h).
@@ -191,6 +198,11 @@ struct alignas(16) DrawConstants {
 };
 static_assert(sizeof(DrawConstants) == 96 && offsetof(DrawConstants, toLight) == 64 && offsetof(DrawConstants, mode) == 80
     && offsetof(DrawConstants, depthOffset) == 88);
+
+struct alignas(16) OverlayConstants {
+    OVERLAY_CONSTANTS_MEMBERS
+};
+static_assert(sizeof(OverlayConstants) == 16);
 
 struct ContourView {
     CONTOURS_VIEW_MEMBERS

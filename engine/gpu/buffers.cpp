@@ -43,7 +43,8 @@ Buffer createBuffer(Device& device, VkDeviceSize size, VkBufferUsageFlags usage,
     const VkMemoryPropertyFlags hostVisible = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
     const std::uint32_t type = use == MemoryUse::Device
         ? chooseMemoryType(device, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, hostVisible)
-        : chooseMemoryType(device, req.memoryTypeBits, hostVisible, VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+        : use == MemoryUse::Upload ? chooseMemoryType(device, req.memoryTypeBits, hostVisible, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)
+                                   : chooseMemoryType(device, req.memoryTypeBits, hostVisible, VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
 
     auto alloc = makeStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
     alloc.allocationSize = req.size;
@@ -111,6 +112,7 @@ TexelView createTexelView(Device& device, const Buffer& buffer, VkFormat format)
     std::uint32_t texelBytes = 0;
     switch (format) {
     case VK_FORMAT_R32_UINT:
+    case VK_FORMAT_R8G8B8A8_UNORM:
         texelBytes = 4;
         break;
     case VK_FORMAT_R32G32_UINT:
@@ -121,7 +123,9 @@ TexelView createTexelView(Device& device, const Buffer& buffer, VkFormat format)
         texelBytes = 16;
         break;
     default:
-        fail("createTexelView: format ", static_cast<int>(format), " is not one of the 32-bit formats every device can fetch");
+        fail("createTexelView: format ", static_cast<int>(format),
+            " is not one of the texel formats every device can fetch (R32_UINT, R32G32_UINT, R32G32B32A32_UINT, R32G32B32A32_SFLOAT, "
+            "R8G8B8A8_UNORM)");
     }
     if (buffer.size % texelBytes != 0)
         fail("createTexelView: a buffer of ", buffer.size, " bytes is not a whole number of ", texelBytes, "-byte texels");

@@ -12,6 +12,7 @@ namespace facesketch::gpu {
 enum class MemoryUse {
     Device,   ///< GPU-local; mapped too when the device shares memory with the host (lavapipe, UMA)
     Readback, ///< host-visible, cached when possible: the GPU writes, the CPU reads
+    Upload,   ///< host-visible (always mapped), device-local when possible: the CPU writes, the GPU reads
 };
 
 struct Buffer {
@@ -43,9 +44,9 @@ struct TexelView {
     VkDeviceSize elements = 0; ///< texels in the view
 };
 
-/// A view of all of `buffer` as texels of `format`: one of the 32-bit-per-channel formats
-/// R32_UINT, R32G32_UINT, R32G32B32A32_UINT and R32G32B32A32_SFLOAT, which every device can
-/// fetch from. Throws Error for another format, a buffer that is not a whole number of texels,
+/// A view of all of `buffer` as texels of `format`: one of R32_UINT, R32G32_UINT,
+/// R32G32B32A32_UINT, R32G32B32A32_SFLOAT and R8G8B8A8_UNORM (RGBA bytes), which every device
+/// can fetch from. Throws Error for another format, a buffer that is not a whole number of texels,
 /// or more texels than the device's maxTexelBufferElements.
 TexelView createTexelView(Device& device, const Buffer& buffer, VkFormat format);
 void destroyTexelView(Device& device, TexelView& view);

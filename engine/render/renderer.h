@@ -1,7 +1,9 @@
 #pragma once
 // The offscreen renderer: draws lit, smooth-shaded triangle meshes, coloured lines and points
-// into an RGBA image (4x MSAA resolved), for previews, screenshots and headless checks.
-// Immediate mode: add draw items, then render() uploads them, draws, and reads back the image.
+// into an RGBA image (4x MSAA resolved), for previews, screenshots and headless checks. It is one
+// user of SceneRenderer (render/scene_renderer.h): its own colour, depth and resolve images and
+// render pass, the scene recorded into them, and a readback that waits on the fence of its own
+// submission only.
 //
 //   gpu::Device device = gpu::createDevice({});
 //   Renderer renderer(device, 800, 800);
@@ -13,17 +15,13 @@
 #include "geometry/camera.h"
 #include "gpu/device.h"
 #include "io/png.h"
+#include "render/scene_renderer.h"
 
 #include <glm/glm.hpp>
 #include <memory>
 #include <vector>
 
 namespace facesketch {
-
-struct MeshStyle {
-    glm::vec4 color { 0.78f, 0.72f, 0.68f, 1.0f }; ///< used when no per-vertex colours are given
-    bool lit = true;                               ///< Lambert + soft specular from a head light
-};
 
 class Renderer {
 public:
@@ -45,7 +43,12 @@ public:
     /// Removes every draw item.
     void clear();
 
-    /// Draws all items seen by `camera` (whose width/height must match) over `background`.
+    /// The scene drawn by render(): for what the calls above do not cover (updateMesh, screen
+    /// polylines, the overlay, hiding items). Items added there and here are one scene.
+    SceneRenderer& scene();
+
+    /// Draws all items seen by `camera` (whose width/height must match) over `background`, and
+    /// waits for this submission's fence (not for the device) to read the image back.
     Image render(const Camera& camera, glm::vec4 background = { 1, 1, 1, 1 });
 
 private:
