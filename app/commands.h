@@ -22,6 +22,8 @@ void addEvalCommand(CLI::App& root);
 void addSketchCommand(CLI::App& root);
 void addStrokesCommand(CLI::App& root);
 void addRegisterCommand(CLI::App& root);
+/// `facesketch gui`, the interactive app (gui/cmd_gui.cpp).
+void addGuiCommand(CLI::App& root);
 /// `facesketch import scans`, a subcommand of `import` (cmd_import.cpp creates `import`).
 void addImportScansCommand(CLI::App& import);
 
