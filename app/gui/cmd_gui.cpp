@@ -91,6 +91,7 @@ fs::path builtInFolder()
 void makeBuiltIn(const fs::path& folder, gui::Progress& progress)
 {
     const fs::path faces = folder / "faces", model = folder / "faces.model";
+    fs::create_directories(folder);
     if (!fs::exists(faces / "manifest.json")) {
         dataset::SynthOptions synth;
         synth.resolution = dataset::Resolution::High;
