@@ -692,31 +692,6 @@ void App::panels()
     if (!doc_)
         return;
 
-    if (recovery_) {
-        ImGui::OpenPopup("Restore?");
-        if (ImGui::BeginPopupModal("Restore?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-            ImGui::Text("The last session was not saved: %zu strokes were autosaved to", recovery_->actions.size());
-            ImGui::TextUnformatted(autosave_->file().string().c_str());
-            if (ImGui::Button("Restore")) {
-                try {
-                    doc_->load(*recovery_, autosave_->file(), autosave_->file().string());
-                    say("restored " + std::to_string(doc_->appliedCount()) + " strokes");
-                } catch (const std::exception& e) {
-                    say(std::string("not restored: ") + e.what());
-                }
-                recovery_.reset();
-                faceChanged();
-                ImGui::CloseCurrentPopup();
-            }
-            ImGui::SameLine();
-            if (ImGui::Button("Discard")) {
-                recovery_.reset();
-                ImGui::CloseCurrentPopup();
-            }
-            ImGui::EndPopup();
-        }
-    }
-
     ImGui::SetNextWindowPos({ 10 * scale, 10 * scale }, ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize({ 330 * scale, 0 }, ImGuiCond_FirstUseEver);
     ImGui::Begin("Sketch");
@@ -795,6 +770,33 @@ void App::panels()
         startTrain(datasetPath_, modelPath_);
     ImGui::EndDisabled();
     ImGui::End();
+
+    // The recovery offer, after the windows it blocks.
+    if (recovery_) {
+        if (!ImGui::IsPopupOpen("Restore?"))
+            ImGui::OpenPopup("Restore?");
+        if (ImGui::BeginPopupModal("Restore?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+            ImGui::Text("The last session was not saved: %zu strokes were autosaved to", recovery_->actions.size());
+            ImGui::TextUnformatted(autosave_->file().string().c_str());
+            if (ImGui::Button("Restore")) {
+                try {
+                    doc_->load(*recovery_, autosave_->file(), autosave_->file().string());
+                    say("restored " + std::to_string(doc_->appliedCount()) + " strokes");
+                } catch (const std::exception& e) {
+                    say(std::string("not restored: ") + e.what());
+                }
+                recovery_.reset();
+                faceChanged();
+                ImGui::CloseCurrentPopup();
+            }
+            ImGui::SameLine();
+            if (ImGui::Button("Discard")) {
+                recovery_.reset();
+                ImGui::CloseCurrentPopup();
+            }
+            ImGui::EndPopup();
+        }
+    }
 }
 
 void App::run()
