@@ -93,7 +93,6 @@ void readbackBuffer(Device& device, const Buffer& buffer, void* data, std::size_
         fail("readbackBuffer: ", size, " bytes at offset ", offset, " exceed the buffer's ", buffer.size);
     if (size == 0)
         return;
-    VK_CHECK(vkQueueWaitIdle(device.queue));
     if (buffer.mapped) {
         std::memcpy(data, static_cast<const char*>(buffer.mapped) + offset, size);
         return;

@@ -29,8 +29,10 @@ void destroyBuffer(Device& device, Buffer& buffer);
 /// Copies `size` bytes from host `data` to `buffer` at `offset`: by memcpy when the buffer is
 /// mapped, otherwise through a staging buffer and a queue submission. Waits until done.
 void uploadBuffer(Device& device, Buffer& buffer, const void* data, std::size_t size, VkDeviceSize offset = 0);
-/// Copies `size` bytes of `buffer` at `offset` to host `data`; waits for the queue to be idle
-/// first, so all previously submitted writes are visible.
+/// Copies `size` bytes of `buffer` at `offset` to host `data`. The GPU writes to it must have
+/// finished and been made visible to the host: submitAndWait waits on the fence of its own
+/// submission, so record hostReadBarrier at the end of the commands that wrote it. Nothing here
+/// waits for the queue, so a window's frames in flight are never stalled by a readback.
 void readbackBuffer(Device& device, const Buffer& buffer, void* data, std::size_t size, VkDeviceSize offset = 0);
 
 /// A typed view of a buffer, bound as a uniform texel buffer (GLSL `samplerBuffer`,

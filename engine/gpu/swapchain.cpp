@@ -187,6 +187,8 @@ void FrameLoop::release()
     for (Slot& slot : slots_)
         if (slot.fence)
             vkWaitForFences(device_.device, 1, &slot.fence, VK_TRUE, UINT64_MAX);
+    // The last presents wait on semaphores destroyed below and have no fence.
+    vkQueueWaitIdle(device_.queue);
     runReleases(true);
     for (Slot& slot : slots_) {
         if (slot.imageAcquired)
@@ -240,9 +242,12 @@ bool FrameLoop::beginFrame(VkExtent2D size, Frame& frame)
         return false;
     }
     if (outOfDate_ || !swapchain_.swapchain || size.width != swapchain_.extent.width || size.height != swapchain_.extent.height) {
-        // The old images may still be drawn into by frames in flight: wait for their fences
-        // (not for the whole device), then rebuild.
+        // The old images may still be drawn into by frames in flight: wait for their fences,
+        // then for the queue, whose presents (which have no fence without
+        // VK_EXT_swapchain_maintenance1) still wait on the old render-finished semaphores.
         waitFrames();
+        if (VkResult r = vkQueueWaitIdle(device_.queue); r != VK_SUCCESS)
+            gpuFail("waiting for the presents before rebuilding the swapchain (vkQueueWaitIdle)", r);
         outOfDate_ = false;
         if (!recreateSwapchain(device_, swapchain_, size))
             return false;

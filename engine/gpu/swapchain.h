@@ -83,14 +83,16 @@ class FrameLoop {
 public:
     /// `device` must have been created with `.swapchain = true` and a queue that presents to `surface`.
     FrameLoop(Device& device, VkSurfaceKHR surface, VkExtent2D framebufferSize, const SwapchainOptions& options = {});
-    /// Waits for this loop's frames (their fences), runs pending releases, destroys everything.
+    /// Waits for this loop's frames (their fences) and the queue (the last presents), runs pending
+    /// releases, destroys everything.
     ~FrameLoop();
     FrameLoop(const FrameLoop&) = delete;
     FrameLoop& operator=(const FrameLoop&) = delete;
 
     /// Waits for the fence of the frame that last used this slot (framesInFlight frames ago), runs
     /// the releases deferred by it, recreates the swapchain when `framebufferSize` differs from its
-    /// extent or the last present reported OUT_OF_DATE / SUBOPTIMAL, acquires an image and begins
+    /// extent or the last present reported OUT_OF_DATE / SUBOPTIMAL (then, and only then, it also
+    /// waits for the queue: presents have no fence), acquires an image and begins
     /// the slot's command buffer. Returns false, with nothing begun, when the size is zero
     /// (minimised) or the image could not be acquired (out of date: the next call recreates);
     /// the caller then skips drawing this frame.
