@@ -7,21 +7,20 @@
 #include "sketch_data.h"
 
 #include "core/error.h"
-#include "core/stopwatch.h"
 #include "io/mesh_io.h"
 #include "io/png.h"
 #include "render/renderer.h"
 #include "sketch/feedback.h"
 #include "sketch/mapper.h"
+#include "sketch/replay.h"
 #include "sketch/session.h"
-#include "sketch/symmetry.h"
-#include "sketch/tracking.h"
 #include "stats/model_file.h"
 
 #include <iomanip>
 #include <iostream>
 #include <memory>
 #include <numeric>
+#include <optional>
 
 namespace facesketch::app {
 
@@ -41,18 +40,9 @@ void runSketch(const SketchCommand& c)
     const stats::FaceModel m = stats::loadFaceModel(c.model);
     const SketchData d = loadSketchData(c.dataset, &m);
 
-    std::unique_ptr<sketch::MirrorMap> mirror;
-    for (const sketch::StrokeAction& a : session.actions)
-        if (a.reading.symmetry && !mirror) {
-            mirror = std::make_unique<sketch::MirrorMap>(sketch::MirrorMap::find(meanMesh(m), d.landmarks, c.model + " mean face"));
-            const sketch::MirrorCheck& k = mirror->check();
-            std::cout << "# mirror map: plane x = " << k.planeX << " mm, worst pair " << k.maxDistance << " mm (mean edge " << k.meanEdge
-                      << " mm), " << k.labelledPairs << " labelled pairs\n";
-        }
-
     gpu::ScopedDevice device;
-    sketch::StrokeReader reader(*device, m, d.candidateFaces, d.flags);
-    sketch::TrackingModel tracking(m);
+    // The app replays through the same SessionReplayer (sketch/replay.h): the same face.
+    sketch::SessionReplayer replayer(*device, m, d.candidateFaces, d.flags, d.landmarks, c.model);
     std::cout << "# " << session.actions.size() << " strokes, " << m.vertexCount() << " vertices, cloud of " << d.candidateFaces.size()
               << " faces\n";
     std::cout << std::fixed << std::setprecision(1);
@@ -64,38 +54,36 @@ void runSketch(const SketchCommand& c)
     int refused = 0;
     for (size_t i = 0; i < session.actions.size(); ++i) {
         const sketch::StrokeAction& a = session.actions[i];
-        const sketch::MapperKind kind = override >= 0 ? static_cast<sketch::MapperKind>(override) : sketch::parseMapper(a.reading.mapper);
-        std::cout << "stroke " << i << ": " << a.stroke.points.size() << " points, " << sketch::mapperName(kind);
-        Stopwatch clock;
-        sketch::StrokeReading reading;
-        try {
-            reading = reader.read(a.stroke, tracking.faceMesh(), kind);
-        } catch (const Error& e) {
+        std::optional<sketch::MapperKind> kind;
+        if (override >= 0)
+            kind = static_cast<sketch::MapperKind>(override);
+        sketch::ReplayOutcome r = replayer.apply(a, kind);
+        if (r.mirrorFound) {
+            const sketch::MirrorCheck& k = replayer.mirror()->check();
+            std::cout << "# mirror map: plane x = " << k.planeX << " mm, worst pair " << k.maxDistance << " mm (mean edge " << k.meanEdge
+                      << " mm), " << k.labelledPairs << " labelled pairs\n";
+        }
+        std::cout << "stroke " << i << ": " << a.stroke.points.size() << " points, " << sketch::mapperName(r.mapper);
+        if (r.kind == sketch::ReplayOutcome::Kind::Refused) {
             // The face and tracking model are as they were; the replay goes on.
-            std::cout << ": refused: " << e.what() << "\n";
+            std::cout << ": refused: " << r.error << "\n";
             ++refused;
             continue;
         }
-        const double readMs = clock.milliseconds();
-        const sketch::StrokeReader::Timing t = reader.lastTiming();
-        const int candidates = std::accumulate(reading.candidateCounts.begin(), reading.candidateCounts.end(), 0);
-        std::cout << ", " << reading.screenPoints.size() << " densified, " << candidates << " candidates, " << reading.observations.size()
-                  << " vertices mapped, read " << readMs << " ms (candidates " << t.candidatesMs << ", mapping " << t.mappingMs << ")";
-        if (reading.observations.empty()) {
-            std::cout << ", pins nothing" << (reading.message.empty() ? "" : ": " + reading.message) << "\n";
+        const int candidates = std::accumulate(r.reading.candidateCounts.begin(), r.reading.candidateCounts.end(), 0);
+        std::cout << ", " << r.reading.screenPoints.size() << " densified, " << candidates << " candidates, "
+                  << r.reading.observations.size() << " vertices mapped, read " << r.readMs << " ms (candidates " << r.timing.candidatesMs
+                  << ", mapping " << r.timing.mappingMs << ")";
+        if (r.kind == sketch::ReplayOutcome::Kind::PinsNothing) {
+            std::cout << ", pins nothing" << (r.reading.message.empty() ? "" : ": " + r.reading.message) << "\n";
             continue;
         }
-        clock.restart();
-        sketch::ApplyOptions apply;
-        apply.correlation = a.reading.correlation;
-        apply.mirror = a.reading.symmetry ? mirror.get() : nullptr;
-        tracking.apply(reading, apply);
-        std::cout << ", rebuild " << clock.milliseconds() << " ms, " << tracking.observedVertices() << " vertices observed\n";
-        drawn.push_back({ std::move(reading), a.stroke.view });
+        std::cout << ", rebuild " << r.applyMs << " ms, " << replayer.tracking().observedVertices() << " vertices observed\n";
+        drawn.push_back({ std::move(r.reading), a.stroke.view });
     }
-    const Mesh face = tracking.faceMesh();
+    const Mesh face = replayer.face();
     writeMesh(c.output, face);
-    std::cout << "wrote " << c.output << " (" << tracking.strokes() << " strokes applied, " << refused << " refused)\n";
+    std::cout << "wrote " << c.output << " (" << replayer.tracking().strokes() << " strokes applied, " << refused << " refused)\n";
 
     if (c.similar > 0 && !d.trainNames.empty()) {
         const std::vector<Mesh> train(d.candidateFaces.begin(), d.candidateFaces.begin() + static_cast<long>(d.trainNames.size()));

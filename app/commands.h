@@ -24,6 +24,8 @@ void addStrokesCommand(CLI::App& root);
 void addRegisterCommand(CLI::App& root);
 /// `facesketch train-poses` (cmd_train_poses.cpp): the pose model of a posed dataset.
 void addTrainPosesCommand(CLI::App& root);
+/// `facesketch gui`, the interactive app (gui/cmd_gui.cpp).
+void addGuiCommand(CLI::App& root);
 /// `facesketch import scans`, a subcommand of `import` (cmd_import.cpp creates `import`).
 void addImportScansCommand(CLI::App& import);
 

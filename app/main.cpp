@@ -24,6 +24,7 @@ int main(int argc, char** argv)
     app::addStrokesCommand(root);
     app::addRegisterCommand(root);
     app::addTrainPosesCommand(root);
+    app::addGuiCommand(root);
     app::addImportScansCommand(*root.get_subcommand("import"));
 
     try {

@@ -9,6 +9,9 @@ packages=(
   libglfw3-dev libglm-dev libeigen3-dev libimgui-dev catch2
   libtinyobjloader-dev nlohmann-json3-dev libcli11-dev libstb-dev libmeshoptimizer-dev
   xvfb xauth clang-format
+  # gui: real X input events for the app's tests (tests/gui/*.sh); python3 checks their results
+  xdotool
+  python3
 )
 
 missing=()

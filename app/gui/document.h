@@ -1,0 +1,130 @@
+#pragma once
+// The app's document: the session being drawn (sketch/session.h, the file `facesketch sketch`
+// replays) and the face it gives. Strokes go through sketch::SessionReplayer, the code path the
+// CLI replays sessions with, so a saved session replays to the identical face. Only strokes
+// that pin something enter the session (the CLI skips the others, so the faces agree).
+//
+// Every action (a stroke, opening a session) can be undone and redone; undo and redo restore
+// the tracking model's stored state, so the face after undo is bit-identical to the face before
+// the undone action.
+
+#include "sketch/replay.h"
+#include "sketch/session.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace facesketch::gui {
+
+/// A stroke in the document: what the user drew and how it was read.
+struct DocumentStroke {
+    sketch::StrokeAction action;
+    sketch::StrokeReading reading;
+};
+
+class Document {
+public:
+    /// `model` and `dataset` are the inputs the replayer was built from (made absolute here);
+    /// they are written into saved sessions. The replayer must be fresh (no stroke applied) and
+    /// outlive the document.
+    Document(sketch::SessionReplayer& replayer, const std::filesystem::path& model, const std::filesystem::path& dataset);
+
+    /// Reads and applies one stroke. Applied: it becomes the last stroke of the session and any
+    /// undone strokes are forgotten. PinsNothing or Refused: nothing changes (the outcome says
+    /// why). Throws Error as SessionReplayer::apply does (nothing changed).
+    sketch::ReplayOutcome addStroke(const sketch::StrokeAction& action);
+
+    /// Undoes the last stroke; false (nothing changed) if there is none.
+    bool undo();
+    /// Redoes the last undone stroke; false if there is none.
+    bool redo();
+    bool canUndo() const { return applied_ > 0; }
+    bool canRedo() const { return applied_ < strokes_.size(); }
+
+    /// Every stroke drawn, including undone ones after appliedCount().
+    const std::vector<DocumentStroke>& strokes() const { return strokes_; }
+    /// How many of strokes() are in effect (the rest are undone, kept for redo).
+    size_t appliedCount() const { return applied_; }
+
+    /// The current face (#V by 3, mm, the model's topology).
+    Mesh face() const { return replayer_.face(); }
+    sketch::SessionReplayer& replayer() { return replayer_; }
+
+    /// The session of the strokes in effect, with absolute model and dataset paths.
+    sketch::Session session() const;
+
+    /// Writes the session atomically to `path`. The model and dataset paths are written relative
+    /// to the file's folder when they lie inside it, absolute otherwise. Throws Error naming the
+    /// file if it cannot be written.
+    void save(const std::filesystem::path& path) const;
+
+    /// Replaces the strokes with those of the session file at `path`, replayed in order (strokes
+    /// that pin nothing or are refused are dropped, as `facesketch sketch` skips them). Throws
+    /// Error naming the file, before anything changes, if it cannot be read or was drawn against
+    /// another model or dataset; returns how many strokes were dropped.
+    int open(const std::filesystem::path& path);
+    /// open() from a session in memory; `where` names it in errors.
+    int load(const sketch::Session& session, const std::filesystem::path& sessionFile, const std::string& where);
+
+    /// Writes the current face as OBJ or PLY (by extension; atomic). Throws Error naming the
+    /// file for another extension.
+    void exportMesh(const std::filesystem::path& path) const;
+
+    /// Changes with every change of the session (strokes in effect); for autosave and titles.
+    std::uint64_t revision() const { return revision_; }
+    /// The revision last saved or opened by the user (not by autosave).
+    std::uint64_t savedRevision() const { return savedRevision_; }
+    void markSaved() { savedRevision_ = revision_; }
+
+    const std::filesystem::path& modelPath() const { return model_; }
+    const std::filesystem::path& datasetPath() const { return dataset_; }
+
+private:
+    sketch::SessionReplayer& replayer_;
+    std::filesystem::path model_, dataset_;
+    std::vector<DocumentStroke> strokes_;
+    size_t applied_ = 0;
+    std::uint64_t revision_ = 0;
+    std::uint64_t savedRevision_ = 0;
+    // Revisions of the states after 0..strokes_.size() strokes, so undoing back to a saved
+    // state is clean again.
+    std::vector<std::uint64_t> revisions_ { 0 };
+    std::uint64_t nextRevision_ = 1;
+};
+
+/// Where the app autosaves: $FACESKETCH_STATE_DIR, else $XDG_STATE_HOME/facesketch, else
+/// $HOME/.local/state/facesketch, then "recovery-session.json".
+std::filesystem::path recoveryFile();
+
+/// Autosave of a document every `intervalSeconds` (when it changed since the last autosave)
+/// and on exit, to a session file the next start offers to restore.
+class Autosave {
+public:
+    /// Nothing is saved until the document's revision differs from `startRevision` (an
+    /// untouched document never overwrites the recovery of an earlier run).
+    Autosave(std::filesystem::path file, double intervalSeconds, std::uint64_t startRevision);
+    /// Saves if at least the interval has passed since the last autosave (or the start) and
+    /// the document's revision differs from the one last autosaved. `nowSeconds` is any
+    /// monotonic clock. Returns whether it saved. An error is kept in lastError(), not thrown:
+    /// a failing autosave must never stop the user's work.
+    bool tick(const Document& document, double nowSeconds);
+    /// Saves now if the document changed since the last autosave (on exit).
+    bool flush(const Document& document);
+    const std::filesystem::path& file() const { return file_; }
+    const std::string& lastError() const { return error_; }
+    int saves() const { return saves_; }
+
+private:
+    bool save(const Document& document);
+    std::filesystem::path file_;
+    double interval_;
+    std::optional<double> last_;
+    std::uint64_t savedRevision_;
+    std::string error_;
+    int saves_ = 0;
+};
+
+} // namespace facesketch::gui

@@ -1,0 +1,423 @@
+#include "gui/window.h"
+
+#include "core/error.h"
+#include "gpu/buffers.h"
+
+#define GLFW_INCLUDE_NONE
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_vulkan.h>
+
+#include <vector>
+
+namespace facesketch::gui {
+
+namespace {
+
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+
+void checkImgui(VkResult r)
+{
+    if (r != VK_SUCCESS)
+        gpu::gpuFail("ImGui Vulkan backend", r);
+}
+
+} // namespace
+
+struct Window::Targets {
+    gpu::Image color; ///< MSAA colour (samples 4 only)
+    gpu::Image depth;
+    std::vector<VkFramebuffer> framebuffers; ///< per swapchain image
+    gpu::Buffer readback;                    ///< screenshots
+    VkExtent2D extent {};
+};
+
+Window::Window(const WindowOptions& options)
+    : samples_(options.samples)
+{
+    if (samples_ != 1 && samples_ != 4)
+        fail("gui: samples must be 1 or 4, got ", samples_);
+    if (!glfwInit())
+        fail("gui: cannot initialise GLFW (no display? set DISPLAY or run under xvfb-run)");
+    if (!glfwVulkanSupported()) {
+        glfwTerminate();
+        fail("gui: GLFW finds no Vulkan loader");
+    }
+    glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+    glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);
+    window_ = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
+    if (!window_) {
+        glfwTerminate();
+        fail("gui: cannot open a ", options.width, "x", options.height, " window");
+    }
+    try {
+        std::uint32_t count = 0;
+        const char** names = glfwGetRequiredInstanceExtensions(&count);
+        gpu::InstanceOptions io;
+        io.extensions.assign(names, names + count);
+        instance_ = gpu::createInstance(io);
+        if (glfwCreateWindowSurface(instance_.instance, window_, nullptr, &surface_) != VK_SUCCESS)
+            fail("gui: cannot create a Vulkan surface for the window");
+        gpu::LogicalDeviceOptions lo;
+        lo.swapchain = true;
+        device_ = gpu::createDevice(instance_, gpu::choosePhysicalDevice(instance_, surface_), lo);
+        int w = 0, h = 0;
+        glfwGetFramebufferSize(window_, &w, &h);
+        loop_ = std::make_unique<gpu::FrameLoop>(device_, surface_, VkExtent2D { std::uint32_t(w), std::uint32_t(h) });
+
+        // One subpass: colour (MSAA, resolved into the swapchain image, or that image itself) and depth.
+        const VkSampleCountFlagBits samples = samples_ == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT;
+        std::vector<VkAttachmentDescription> att;
+        VkAttachmentDescription color {};
+        color.format = colorFormat();
+        color.samples = samples;
+        color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        color.storeOp = samples_ == 4 ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
+        color.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+        color.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        color.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+        color.finalLayout = samples_ == 4 ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+        att.push_back(color);
+        VkAttachmentDescription depth = color;
+        depth.format = kDepthFormat;
+        depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        depth.finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+        att.push_back(depth);
+        if (samples_ == 4) {
+            VkAttachmentDescription resolve = color;
+            resolve.samples = VK_SAMPLE_COUNT_1_BIT;
+            resolve.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+            resolve.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+            resolve.finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+            att.push_back(resolve);
+        }
+        VkAttachmentReference colorRef { 0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL };
+        VkAttachmentReference depthRef { 1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL };
+        VkAttachmentReference resolveRef { 2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL };
+        VkSubpassDescription subpass {};
+        subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+        subpass.colorAttachmentCount = 1;
+        subpass.pColorAttachments = &colorRef;
+        subpass.pDepthStencilAttachment = &depthRef;
+        subpass.pResolveAttachments = samples_ == 4 ? &resolveRef : nullptr;
+        // The previous frame's use of the shared MSAA and depth images (and the acquire
+        // semaphore's wait at colour output) come before this frame's.
+        VkSubpassDependency dep {};
+        dep.srcSubpass = VK_SUBPASS_EXTERNAL;
+        dep.dstSubpass = 0;
+        dep.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+        dep.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+        dep.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT;
+        dep.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_COLOR_ATTACHMENT_READ_BIT
+            | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
+        auto rp = gpu::makeStruct<VkRenderPassCreateInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO);
+        rp.attachmentCount = static_cast<std::uint32_t>(att.size());
+        rp.pAttachments = att.data();
+        rp.subpassCount = 1;
+        rp.pSubpasses = &subpass;
+        rp.dependencyCount = 1;
+        rp.pDependencies = &dep;
+        VK_CHECK(vkCreateRenderPass(device_.device, &rp, nullptr, &renderPass_));
+
+        // ImGui, scaled for the display.
+        IMGUI_CHECKVERSION();
+        ImGui::CreateContext();
+        ImGui::GetIO().IniFilename = nullptr; // no imgui.ini beside the user's files
+        ImGui::StyleColorsDark();
+        const float scale = static_cast<float>(contentScale());
+        ImGui::GetStyle().ScaleAllSizes(scale);
+        ImGui::GetIO().FontGlobalScale = scale;
+        // Our callbacks see each event first and hand it on to ImGui.
+        glfwSetWindowUserPointer(window_, this);
+        glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int mods) {
+            auto* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
+            double x = 0, y = 0;
+            self->cursor(x, y);
+            if (self->events_.mouseButton)
+                self->events_.mouseButton(button, action, mods, x, y);
+            ImGui_ImplGlfw_MouseButtonCallback(w, button, action, mods);
+        });
+        glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double, double) {
+            auto* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
+            double x = 0, y = 0;
+            self->cursor(x, y);
+            if (self->events_.cursor)
+                self->events_.cursor(x, y);
+        });
+        glfwSetScrollCallback(window_, [](GLFWwindow* w, double dx, double dy) {
+            auto* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
+            if (self->events_.scroll)
+                self->events_.scroll(dy);
+            ImGui_ImplGlfw_ScrollCallback(w, dx, dy);
+        });
+        glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int scancode, int action, int mods) {
+            auto* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
+            if (self->events_.key)
+                self->events_.key(key, action, mods);
+            ImGui_ImplGlfw_KeyCallback(w, key, scancode, action, mods);
+        });
+        glfwSetCharCallback(window_, ImGui_ImplGlfw_CharCallback);
+        glfwSetWindowFocusCallback(window_, ImGui_ImplGlfw_WindowFocusCallback);
+        glfwSetCursorEnterCallback(window_, ImGui_ImplGlfw_CursorEnterCallback);
+        imguiGlfw_ = ImGui_ImplGlfw_InitForVulkan(window_, false);
+        VkDescriptorPoolSize poolSize { VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 16 };
+        auto pool = gpu::makeStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+        pool.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+        pool.maxSets = 16;
+        pool.poolSizeCount = 1;
+        pool.pPoolSizes = &poolSize;
+        VK_CHECK(vkCreateDescriptorPool(device_.device, &pool, nullptr, &imguiPool_));
+        ImGui_ImplVulkan_InitInfo info {};
+        info.Instance = instance_.instance;
+        info.PhysicalDevice = device_.physical;
+        info.Device = device_.device;
+        info.QueueFamily = device_.queueFamily;
+        info.Queue = device_.queue;
+        info.DescriptorPool = imguiPool_;
+        info.Subpass = 0;
+        const auto images = static_cast<std::uint32_t>(std::max<size_t>(loop_->swapchain().images.size(), 2));
+        info.MinImageCount = 2;
+        // ImGui keeps a ring of vertex buffers this long; at least the frames in flight.
+        info.ImageCount = std::max(images, gpu::framesInFlight);
+        info.MSAASamples = samples;
+        info.CheckVkResultFn = checkImgui;
+        imguiVulkan_ = ImGui_ImplVulkan_Init(&info, renderPass_);
+        gpu::submitAndWait(device_, [](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
+        ImGui_ImplVulkan_DestroyFontUploadObjects();
+    } catch (...) {
+        release();
+        throw;
+    }
+}
+
+Window::~Window()
+{
+    release();
+}
+
+void Window::release()
+{
+    if (loop_)
+        loop_->waitFrames();
+    if (ImGui::GetCurrentContext()) {
+        if (imguiFrame_)
+            ImGui::EndFrame();
+        imguiFrame_ = false;
+        if (imguiVulkan_)
+            ImGui_ImplVulkan_Shutdown();
+        if (imguiGlfw_)
+            ImGui_ImplGlfw_Shutdown();
+        imguiVulkan_ = imguiGlfw_ = false;
+        ImGui::DestroyContext();
+    }
+    destroyTargets();
+    if (imguiPool_)
+        vkDestroyDescriptorPool(device_.device, imguiPool_, nullptr);
+    imguiPool_ = VK_NULL_HANDLE;
+    if (renderPass_)
+        vkDestroyRenderPass(device_.device, renderPass_, nullptr);
+    renderPass_ = VK_NULL_HANDLE;
+    loop_.reset();
+    if (device_.device)
+        gpu::destroyDevice(device_);
+    device_ = {};
+    if (surface_)
+        vkDestroySurfaceKHR(instance_.instance, surface_, nullptr);
+    surface_ = VK_NULL_HANDLE;
+    if (instance_.instance)
+        gpu::destroyInstance(instance_);
+    instance_ = {};
+    if (window_) {
+        glfwDestroyWindow(window_);
+        glfwTerminate();
+    }
+    window_ = nullptr;
+}
+
+VkFormat Window::colorFormat() const
+{
+    return loop_->swapchain().format;
+}
+
+double Window::contentScale() const
+{
+    int fw = 0, fh = 0, ww = 0, wh = 0;
+    glfwGetFramebufferSize(window_, &fw, &fh);
+    glfwGetWindowSize(window_, &ww, &wh);
+    if (ww > 0 && fw > 0)
+        return static_cast<double>(fw) / ww;
+    float sx = 1, sy = 1;
+    glfwGetWindowContentScale(window_, &sx, &sy);
+    return sx;
+}
+
+void Window::cursor(double& x, double& y) const
+{
+    glfwGetCursorPos(window_, &x, &y);
+    const double s = contentScale();
+    x *= s;
+    y *= s;
+}
+
+bool Window::shouldClose() const
+{
+    return glfwWindowShouldClose(window_);
+}
+
+void Window::requestClose()
+{
+    glfwSetWindowShouldClose(window_, GLFW_TRUE);
+}
+
+namespace {
+
+void destroy(gpu::Device& device, Window::Targets& t)
+{
+    for (VkFramebuffer f : t.framebuffers)
+        vkDestroyFramebuffer(device.device, f, nullptr);
+    if (t.color.image)
+        gpu::destroyImage(device, t.color);
+    if (t.depth.image)
+        gpu::destroyImage(device, t.depth);
+    if (t.readback.buffer)
+        gpu::destroyBuffer(device, t.readback);
+}
+
+} // namespace
+
+void Window::destroyTargets()
+{
+    if (targets_)
+        destroy(device_, *targets_);
+    targets_.reset();
+}
+
+void Window::createTargets()
+{
+    const gpu::Swapchain& sc = loop_->swapchain();
+    auto t = std::make_unique<Targets>();
+    t->extent = sc.extent;
+    const VkSampleCountFlagBits samples = samples_ == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT;
+    if (samples_ == 4)
+        t->color = gpu::createImage(device_, sc.extent.width, sc.extent.height, sc.format,
+            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT, VK_IMAGE_ASPECT_COLOR_BIT, samples);
+    t->depth = gpu::createImage(device_, sc.extent.width, sc.extent.height, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+        VK_IMAGE_ASPECT_DEPTH_BIT, samples);
+    for (VkImageView view : sc.views) {
+        std::vector<VkImageView> views;
+        if (samples_ == 4)
+            views = { t->color.view, t->depth.view, view };
+        else
+            views = { view, t->depth.view };
+        auto info = gpu::makeStruct<VkFramebufferCreateInfo>(VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO);
+        info.renderPass = renderPass_;
+        info.attachmentCount = static_cast<std::uint32_t>(views.size());
+        info.pAttachments = views.data();
+        info.width = sc.extent.width;
+        info.height = sc.extent.height;
+        info.layers = 1;
+        VkFramebuffer fb = VK_NULL_HANDLE;
+        VK_CHECK(vkCreateFramebuffer(device_.device, &info, nullptr, &fb));
+        t->framebuffers.push_back(fb);
+    }
+    if (sc.usage & VK_IMAGE_USAGE_TRANSFER_SRC_BIT)
+        t->readback = gpu::createBuffer(device_, VkDeviceSize(sc.extent.width) * sc.extent.height * 4, 0, gpu::MemoryUse::Readback);
+    targets_ = std::move(t);
+    targetsFor_ = sc.swapchain;
+}
+
+bool Window::begin(gpu::Frame& frame, const float background[4])
+{
+    ImGui_ImplVulkan_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    imguiFrame_ = true;
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window_, &w, &h);
+    if (!loop_->beginFrame({ std::uint32_t(w), std::uint32_t(h) }, frame))
+        return false;
+    if (!targets_ || targetsFor_ != loop_->swapchain().swapchain) {
+        // The swapchain was recreated: the old targets may still be used by a frame in flight.
+        if (targets_) {
+            std::shared_ptr<Targets> old(std::move(targets_));
+            loop_->defer([this, old] { destroy(device_, *old); });
+        }
+        createTargets();
+    }
+    VkClearValue clear[3] {};
+    for (int i = 0; i < 4; ++i)
+        clear[0].color.float32[i] = background[i];
+    clear[1].depthStencil = { 1.0f, 0 };
+    clear[2] = clear[0];
+    auto rp = gpu::makeStruct<VkRenderPassBeginInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO);
+    rp.renderPass = renderPass_;
+    rp.framebuffer = targets_->framebuffers[frame.imageIndex];
+    rp.renderArea.extent = frame.extent;
+    rp.clearValueCount = samples_ == 4 ? 3 : 2;
+    rp.pClearValues = clear;
+    vkCmdBeginRenderPass(frame.cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
+    return true;
+}
+
+void Window::skipFrame()
+{
+    if (imguiFrame_)
+        ImGui::EndFrame();
+    imguiFrame_ = false;
+}
+
+void Window::end(gpu::Frame& frame, bool capture)
+{
+    ImGui::Render();
+    imguiFrame_ = false;
+    ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), frame.cmd);
+    vkCmdEndRenderPass(frame.cmd);
+    captured_ = false;
+    if (capture && targets_->readback.buffer) {
+        gpu::imageBarrier(frame.cmd, frame.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+            VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+            VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+        VkBufferImageCopy region {};
+        region.imageSubresource = { VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1 };
+        region.imageExtent = { frame.extent.width, frame.extent.height, 1 };
+        vkCmdCopyImageToBuffer(frame.cmd, frame.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, targets_->readback.buffer, 1, &region);
+        // The copy is read by the host once the frame's fence has passed.
+        auto toHost = gpu::makeStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+        toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+        vkCmdPipelineBarrier(frame.cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0, nullptr);
+        gpu::imageBarrier(frame.cmd, frame.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+            VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0);
+        captured_ = true;
+    }
+    loop_->endFrame(frame);
+}
+
+Image Window::screenshot()
+{
+    if (!captured_)
+        fail("gui: no frame was captured (the surface does not allow copying its images)");
+    loop_->waitFrames();
+    const VkExtent2D e = targets_->extent;
+    Image image;
+    image.width = static_cast<int>(e.width);
+    image.height = static_cast<int>(e.height);
+    image.pixels.resize(static_cast<size_t>(e.width) * e.height * 4);
+    gpu::readbackBuffer(device_, targets_->readback, image.pixels.data(), image.pixels.size());
+    const VkFormat f = colorFormat();
+    if (f == VK_FORMAT_B8G8R8A8_UNORM || f == VK_FORMAT_B8G8R8A8_SRGB)
+        for (size_t i = 0; i < image.pixels.size(); i += 4)
+            std::swap(image.pixels[i], image.pixels[i + 2]);
+    for (size_t i = 3; i < image.pixels.size(); i += 4)
+        image.pixels[i] = 255; // the window is opaque
+    return image;
+}
+
+void Window::waitIdle()
+{
+    loop_->waitFrames();
+}
+
+} // namespace facesketch::gui

@@ -1,0 +1,100 @@
+#pragma once
+// The app's window: GLFW (no client API), a Vulkan device that presents to it (gpu/device.h's
+// three steps), the frame loop (gpu/swapchain.h), one render pass that the scene
+// (render/scene_renderer.h) and ImGui (Debian's imgui_impl_glfw / imgui_impl_vulkan, built into
+// the app) draw into, and screenshots of the presented image. HiDPI: everything is in
+// framebuffer pixels; contentScale() scales the ImGui style and fonts and converts GLFW's
+// cursor positions (screen coordinates) to pixels.
+//
+// Render pass: 4x MSAA colour and depth resolved into the swapchain image (samples() = 4), or,
+// with samples 1, the swapchain image itself. The MSAA and depth images are shared by the
+// frames in flight; the pass's external dependency orders one frame's use after the last.
+
+#include "gpu/device.h"
+#include "gpu/swapchain.h"
+#include "io/png.h"
+
+#include <functional>
+#include <memory>
+#include <string>
+
+struct GLFWwindow;
+
+namespace facesketch::gui {
+
+struct WindowOptions {
+    int width = 1280; ///< framebuffer pixels asked for (the window is sized so on HiDPI too)
+    int height = 800;
+    std::string title = "FaceSketch";
+    int samples = 4; ///< 1 or 4
+};
+
+/// Input for the app, called from glfwPollEvents before ImGui sees the event. Positions in
+/// framebuffer pixels (x right, y down); buttons, actions, keys and mods are GLFW's values.
+struct WindowEvents {
+    std::function<void(int button, int action, int mods, double x, double y)> mouseButton;
+    std::function<void(double x, double y)> cursor;
+    std::function<void(double steps)> scroll;
+    std::function<void(int key, int action, int mods)> key;
+};
+
+class Window {
+public:
+    struct Targets; ///< the render pass's images and framebuffers for one swapchain
+    /// Opens the window and creates the device, swapchain, render pass and ImGui. Throws Error
+    /// when GLFW cannot open a window (no display) or Vulkan cannot present to it.
+    explicit Window(const WindowOptions& options);
+    ~Window();
+    Window(const Window&) = delete;
+    Window& operator=(const Window&) = delete;
+
+    GLFWwindow* glfw() const { return window_; }
+    gpu::Device& device() { return device_; }
+    VkRenderPass renderPass() const { return renderPass_; }
+    VkFormat colorFormat() const;
+    int samples() const { return samples_; }
+    /// Framebuffer pixels per screen coordinate (1 on a normal display, 2 on a 2x HiDPI one).
+    double contentScale() const;
+    bool shouldClose() const;
+    void setEvents(WindowEvents events) { events_ = std::move(events); }
+    /// The cursor in framebuffer pixels.
+    void cursor(double& x, double& y) const;
+    void requestClose();
+
+    /// Starts a frame: acquires an image (false when minimised or out of date: skip the
+    /// frame), starts ImGui's frame and begins the render pass cleared to `background`.
+    /// Between begin and end the caller records its draws into frame.cmd and builds its ImGui
+    /// windows.
+    bool begin(gpu::Frame& frame, const float background[4]);
+    /// Renders ImGui, ends the pass, optionally copies the image for screenshot(), submits and
+    /// presents.
+    void end(gpu::Frame& frame, bool capture);
+    /// Ends ImGui's frame without drawing it (when begin() returned false).
+    void skipFrame();
+    /// The image of the last frame ended with capture = true (waits for it), as RGBA.
+    Image screenshot();
+    /// Waits for every frame in flight (before replacing what they draw, at exit).
+    void waitIdle();
+    gpu::FrameLoop& loop() { return *loop_; }
+
+private:
+    void release();
+    void createTargets();
+    void destroyTargets();
+    GLFWwindow* window_ = nullptr;
+    WindowEvents events_;
+    gpu::Instance instance_;
+    VkSurfaceKHR surface_ = VK_NULL_HANDLE;
+    gpu::Device device_;
+    std::unique_ptr<gpu::FrameLoop> loop_;
+    int samples_ = 4;
+    VkRenderPass renderPass_ = VK_NULL_HANDLE;
+    VkDescriptorPool imguiPool_ = VK_NULL_HANDLE;
+    std::unique_ptr<Targets> targets_;
+    VkSwapchainKHR targetsFor_ = VK_NULL_HANDLE;
+    bool imguiFrame_ = false;
+    bool imguiGlfw_ = false, imguiVulkan_ = false;
+    bool captured_ = false;
+};
+
+} // namespace facesketch::gui

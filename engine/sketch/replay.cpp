@@ -1,0 +1,55 @@
+#include "sketch/replay.h"
+
+#include "core/error.h"
+#include "core/stopwatch.h"
+
+namespace facesketch::sketch {
+
+SessionReplayer::SessionReplayer(gpu::Device& device, const stats::FaceModel& model, const std::vector<Mesh>& candidateFaces,
+    std::vector<std::uint32_t> flags, std::map<std::string, int> landmarks, std::string modelName)
+    : model_(model)
+    , landmarks_(std::move(landmarks))
+    , modelName_(std::move(modelName))
+    , reader_(device, model, candidateFaces, std::move(flags))
+    , tracking_(model)
+{
+}
+
+ReplayOutcome SessionReplayer::apply(const StrokeAction& action, std::optional<MapperKind> mapperOverride)
+{
+    ReplayOutcome out;
+    out.mapper = mapperOverride ? *mapperOverride : parseMapper(action.reading.mapper);
+    if (action.reading.symmetry && !mirror_) {
+        // Found once, from the mean face (the most symmetric), before anything is read so that a
+        // face without a mirror map fails before the stroke changes anything.
+        Mesh mean;
+        mean.F = model_.triangles;
+        mean.V = asVertices(model_.meanFace);
+        mirror_ = std::make_unique<MirrorMap>(MirrorMap::find(mean, landmarks_, modelName_ + " mean face"));
+        out.mirrorFound = true;
+    }
+    Stopwatch clock;
+    try {
+        out.reading = reader_.read(action.stroke, tracking_.faceMesh(), out.mapper);
+    } catch (const Error& e) {
+        out.kind = ReplayOutcome::Kind::Refused;
+        out.error = e.what();
+        return out;
+    }
+    out.readMs = clock.milliseconds();
+    out.timing = reader_.lastTiming();
+    if (out.reading.observations.empty()) {
+        out.kind = ReplayOutcome::Kind::PinsNothing;
+        return out;
+    }
+    clock.restart();
+    ApplyOptions apply;
+    apply.correlation = action.reading.correlation;
+    apply.mirror = action.reading.symmetry ? mirror_.get() : nullptr;
+    tracking_.apply(out.reading, apply);
+    out.applyMs = clock.milliseconds();
+    out.kind = ReplayOutcome::Kind::Applied;
+    return out;
+}
+
+} // namespace facesketch::sketch

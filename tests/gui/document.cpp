@@ -1,0 +1,213 @@
+// The app's document: strokes through the shared replayer, undo/redo, save/open, export,
+// autosave and the recovery file.
+#include "gui/document.h"
+
+#include "core/error.h"
+#include "fixture.h"
+#include "io/mesh_io.h"
+#include "sketch/simulate.h"
+#include "test_common.h"
+
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <fstream>
+
+using namespace facesketch;
+using namespace facesketch::gui;
+
+namespace {
+
+std::vector<sketch::StrokeAction> actions()
+{
+    const auto& w = test::sketchWorld();
+    sketch::SimulateOptions o;
+    o.imageSize = 600;
+    o.noisePx = 0.5;
+    std::vector<sketch::StrokeAction> out;
+    for (const sketch::SimulatedStroke& s : sketch::simulateStrokes(w.testFaces[1], w.mean, w.contours, w.flags, o).strokes)
+        out.push_back({ s.stroke, {} });
+    return out;
+}
+
+// A folder with the files a session's inputs must name (their contents are not read here).
+struct Inputs {
+    test::TempDir dir;
+    std::filesystem::path model = dir / "faces.model", dataset = dir / "faces";
+    Inputs()
+    {
+        std::filesystem::create_directories(dataset);
+        std::ofstream(model) << "x";
+        std::ofstream(dataset / "manifest.json") << "{}";
+    }
+};
+
+// Adds strokes until `n` are applied.
+void addApplied(Document& doc, size_t n)
+{
+    for (const sketch::StrokeAction& a : actions()) {
+        if (doc.appliedCount() == n)
+            return;
+        doc.addStroke(a);
+    }
+    REQUIRE(doc.appliedCount() == n);
+}
+
+} // namespace
+
+TEST_CASE("document: undo and redo of strokes restore the face exactly, a new stroke forgets the undone ones")
+{
+    const auto& w = test::sketchWorld();
+    Inputs in;
+    sketch::SessionReplayer replayer(test::device(), w.model, w.candidateFaces, w.flags, {}, "model");
+    Document doc(replayer, in.model, in.dataset);
+    REQUIRE_FALSE(doc.canUndo());
+    const Mesh mean = doc.face();
+    const std::uint64_t r0 = doc.revision();
+    addApplied(doc, 1);
+    const Mesh one = doc.face();
+    const std::uint64_t r1 = doc.revision();
+    addApplied(doc, 2);
+    const Mesh two = doc.face();
+    REQUIRE(two.V != one.V);
+    REQUIRE(doc.undo());
+    REQUIRE(doc.face().V == one.V);
+    REQUIRE(doc.revision() == r1);
+    REQUIRE(doc.undo());
+    REQUIRE(doc.face().V == mean.V);
+    REQUIRE(doc.revision() == r0);
+    REQUIRE_FALSE(doc.undo());
+    REQUIRE(doc.redo());
+    REQUIRE(doc.redo());
+    REQUIRE(doc.face().V == two.V);
+    REQUIRE_FALSE(doc.redo());
+    REQUIRE(doc.strokes().size() == 2);
+    REQUIRE(doc.session().actions.size() == 2);
+
+    REQUIRE(doc.undo());
+    REQUIRE(doc.canRedo());
+    const sketch::StrokeAction third = actions().back();
+    if (doc.addStroke(third).kind == sketch::ReplayOutcome::Kind::Applied) {
+        REQUIRE_FALSE(doc.canRedo());
+        REQUIRE(doc.strokes().size() == 2);
+        REQUIRE(sketch::operator==(doc.strokes().back().action, third));
+        REQUIRE(doc.revision() != r1);
+    }
+}
+
+TEST_CASE("document: a saved session opens to the identical strokes and face, with paths relative to it")
+{
+    const auto& w = test::sketchWorld();
+    Inputs in;
+    sketch::SessionReplayer a(test::device(), w.model, w.candidateFaces, w.flags, {}, "model");
+    Document doc(a, in.model, in.dataset);
+    addApplied(doc, 3);
+    doc.undo();
+    const std::filesystem::path file = in.dir / "my.session.json";
+    doc.save(file);
+    const sketch::Session onDisk = sketch::loadSession(file);
+    REQUIRE(onDisk.model == "faces.model");
+    REQUIRE(onDisk.dataset == "faces");
+    REQUIRE(onDisk.actions.size() == 2);
+
+    sketch::SessionReplayer b(test::device(), w.model, w.candidateFaces, w.flags, {}, "model");
+    Document other(b, in.model, in.dataset);
+    REQUIRE(other.open(file) == 0);
+    REQUIRE(other.face().V == doc.face().V);
+    REQUIRE(sketch::operator==(other.session(), doc.session()));
+
+    // Saved elsewhere, the paths are absolute and the session still opens.
+    test::TempDir elsewhere;
+    doc.save(elsewhere / "s.json");
+    REQUIRE(sketch::loadSession(elsewhere / "s.json").model == in.model);
+    REQUIRE(other.open(elsewhere / "s.json") == 0);
+    REQUIRE(other.face().V == doc.face().V);
+}
+
+TEST_CASE("document: a session of another model or a broken file is refused and changes nothing")
+{
+    const auto& w = test::sketchWorld();
+    Inputs in, second;
+    sketch::SessionReplayer a(test::device(), w.model, w.candidateFaces, w.flags, {}, "model");
+    Document doc(a, in.model, in.dataset);
+    addApplied(doc, 1);
+    const Mesh before = doc.face();
+
+    sketch::SessionReplayer b(test::device(), w.model, w.candidateFaces, w.flags, {}, "model");
+    Document foreign(b, second.model, second.dataset);
+    foreign.save(second.dir / "foreign.json");
+    REQUIRE_THROWS_WITH(doc.open(second.dir / "foreign.json"), Catch::Contains("foreign.json: model: drawn against"));
+    test::writeText(in.dir / "cut.json", "{\"format\": \"facesketch-session\", \"vers");
+    REQUIRE_THROWS_AS(doc.open(in.dir / "cut.json"), Error);
+    REQUIRE(doc.face().V == before.V);
+    REQUIRE(doc.appliedCount() == 1);
+    REQUIRE(doc.undo());
+}
+
+TEST_CASE("document: export writes the face as PLY or OBJ and refuses other formats")
+{
+    const auto& w = test::sketchWorld();
+    Inputs in;
+    sketch::SessionReplayer a(test::device(), w.model, w.candidateFaces, w.flags, {}, "model");
+    Document doc(a, in.model, in.dataset);
+    addApplied(doc, 1);
+    for (const char* name : { "face.ply", "face.obj" }) {
+        doc.exportMesh(in.dir / name);
+        const Mesh back = readMesh(in.dir / name);
+        REQUIRE(back.F == doc.face().F);
+        REQUIRE((back.V - doc.face().V).cwiseAbs().maxCoeff() < 1e-5);
+    }
+    REQUIRE_THROWS_WITH(doc.exportMesh(in.dir / "face.stl"), Catch::Contains("face.stl: export writes .obj or .ply"));
+    REQUIRE_FALSE(std::filesystem::exists(in.dir / "face.stl"));
+}
+
+TEST_CASE("autosave: saves changes once per interval and on flush, and the recovery file restores every stroke")
+{
+    const auto& w = test::sketchWorld();
+    Inputs in;
+    sketch::SessionReplayer a(test::device(), w.model, w.candidateFaces, w.flags, {}, "model");
+    Document doc(a, in.model, in.dataset);
+    const std::filesystem::path file = in.dir / "state" / "recovery-session.json";
+    Autosave autosave(file, 30, doc.revision());
+    REQUIRE_FALSE(autosave.tick(doc, 100)); // starts the clock
+    REQUIRE_FALSE(autosave.tick(doc, 200)); // nothing changed
+    REQUIRE_FALSE(autosave.flush(doc));
+    REQUIRE_FALSE(std::filesystem::exists(file));
+    addApplied(doc, 2);
+    REQUIRE_FALSE(autosave.tick(doc, 129)); // 29 s since the last save time
+    REQUIRE(autosave.tick(doc, 231));
+    REQUIRE(autosave.saves() == 1);
+    REQUIRE_FALSE(autosave.tick(doc, 300)); // unchanged
+    addApplied(doc, 3);
+    REQUIRE_FALSE(autosave.tick(doc, 250));
+    REQUIRE(autosave.flush(doc)); // on exit
+    REQUIRE(autosave.saves() == 2);
+
+    sketch::SessionReplayer b(test::device(), w.model, w.candidateFaces, w.flags, {}, "model");
+    Document restored(b, in.model, in.dataset);
+    REQUIRE(restored.open(file) == 0);
+    REQUIRE(restored.appliedCount() == 3);
+    REQUIRE(restored.face().V == doc.face().V);
+
+    // An unwritable place: kept as an error, never thrown.
+    test::writeText(in.dir / "blocker", "a file, not a folder");
+    Autosave broken(in.dir / "blocker" / "recovery.json", 1, 0);
+    REQUIRE_FALSE(broken.flush(doc));
+    REQUIRE_FALSE(broken.lastError().empty());
+    REQUIRE_THROWS_WITH(Autosave(file, 0, 0), Catch::Contains("interval"));
+}
+
+TEST_CASE("autosave: the recovery file lies under FACESKETCH_STATE_DIR, XDG_STATE_HOME or ~/.local/state")
+{
+    const std::string oldHome = std::getenv("HOME") ? std::getenv("HOME") : "";
+    ::unsetenv("FACESKETCH_STATE_DIR");
+    ::unsetenv("XDG_STATE_HOME");
+    ::setenv("HOME", "/home/someone", 1);
+    REQUIRE(recoveryFile() == "/home/someone/.local/state/facesketch/recovery-session.json");
+    ::setenv("XDG_STATE_HOME", "/x/state", 1);
+    REQUIRE(recoveryFile() == "/x/state/facesketch/recovery-session.json");
+    ::setenv("FACESKETCH_STATE_DIR", "/tmp/fs", 1);
+    REQUIRE(recoveryFile() == "/tmp/fs/recovery-session.json");
+    ::unsetenv("FACESKETCH_STATE_DIR");
+    ::unsetenv("XDG_STATE_HOME");
+    ::setenv("HOME", oldHome.c_str(), 1);
+}

@@ -1,0 +1,66 @@
+# Shared by the real-input tests of `facesketch gui` (tests/gui/*.sh): small data, the X display,
+# starting the app and driving it with xdotool (real X input events through XTEST).
+# Sourced with FACESKETCH (the executable) and WORK (a scratch folder) set.
+
+set -euo pipefail
+
+fail() {
+  echo "FAILED: $*" >&2
+  if [ -f "$WORK/app.log" ]; then echo "--- app log:" >&2; tail -n 40 "$WORK/app.log" >&2; fi
+  exit 1
+}
+
+# The small synthetic set and model of tests/cli/sketch.cmake.
+make_data() {
+  rm -rf "$WORK"
+  mkdir -p "$WORK/state" "$WORK/cache"
+  "$FACESKETCH" synth -o "$WORK/faces" --identities 60 --seed 3 > /dev/null
+  "$FACESKETCH" train "$WORK/faces" -o "$WORK/faces.model" -k 7 --folds 3 --latent-dim 6 --cleanup-dim 12 --correlation-dim 10 \
+    --restarts 1 -q > /dev/null
+}
+
+# Waits until the app log has a line matching $1 (extended regex); fails after $2 seconds.
+wait_for() {
+  local pattern=$1 seconds=${2:-120} i
+  for ((i = 0; i < seconds * 10; ++i)); do
+    if grep -Eq "$pattern" "$WORK/app.log" 2> /dev/null; then return 0; fi
+    if [ -n "${APP:-}" ] && ! kill -0 "$APP" 2> /dev/null; then fail "the app exited while waiting for '$pattern'"; fi
+    sleep 0.1
+  done
+  fail "no '$pattern' in the app's output after $seconds s"
+}
+
+# Starts the app on the small data with the extra arguments; sets APP (pid) and WID (window).
+start_app() {
+  export FACESKETCH_STATE_DIR="$WORK/state" FACESKETCH_CACHE_DIR="$WORK/cache"
+  "$FACESKETCH" gui "$WORK/faces.model" "$WORK/faces" --size 1000x760 --print-guides "$@" > "$WORK/app.log" 2>&1 &
+  APP=$!
+  wait_for "gui: first frame" 300
+  WID=$(xdotool search --sync --limit 1 --pid "$APP" --name '^FaceSketch$')
+  [ -n "$WID" ] || fail "no FaceSketch window"
+  xdotool windowfocus --sync "$WID" 2> /dev/null || xdotool windowfocus "$WID"
+  sleep 0.3
+}
+
+# The last guide line for $1 in view $2 ("0,0", "90,0"): its points, "x,y x,y ...".
+guide() {
+  grep -E "^guide $1 view $2:" "$WORK/app.log" | tail -n 1 | sed -e 's/^[^:]*: //'
+}
+
+# Drags with the left button through the points "x,y x,y ..." (window coordinates).
+drag() {
+  local points=($1) first=1 p
+  for p in "${points[@]}"; do
+    xdotool mousemove --window "$WID" "${p%,*}" "${p#*,}"
+    if [ $first = 1 ]; then
+      xdotool mousedown 1
+      first=0
+    fi
+    sleep 0.03
+  done
+  xdotool mouseup 1
+}
+
+key() {
+  xdotool key --clearmodifiers "$1"
+}

@@ -1,0 +1,94 @@
+// SessionReplayer: the one path `facesketch sketch` and the app apply strokes through.
+#include "sketch/replay.h"
+
+#include "fixture.h"
+#include "sketch/simulate.h"
+#include "test_common.h"
+
+#include <catch2/catch.hpp>
+#include <limits>
+
+using namespace facesketch;
+using namespace facesketch::sketch;
+
+namespace {
+
+std::vector<Stroke> frontStrokes()
+{
+    const auto& w = test::sketchWorld();
+    SimulateOptions o;
+    o.imageSize = 600;
+    o.noisePx = 0.5;
+    std::vector<Stroke> out;
+    for (const SimulatedStroke& s : simulateStrokes(w.testFaces[0], w.mean, w.contours, w.flags, o).strokes)
+        out.push_back(s.stroke);
+    return out;
+}
+
+} // namespace
+
+TEST_CASE("replay: strokes give the face of reading and applying them one by one")
+{
+    const auto& w = test::sketchWorld();
+    const std::vector<Stroke> strokes = frontStrokes();
+    REQUIRE(strokes.size() >= 3);
+    SessionReplayer replayer(test::device(), w.model, w.candidateFaces, w.flags, {}, "test model");
+    StrokeReader reader(test::device(), w.model, w.candidateFaces, w.flags);
+    TrackingModel tracking(w.model);
+    int applied = 0;
+    for (size_t i = 0; i < 3; ++i) {
+        StrokeAction a { strokes[i], {} };
+        a.reading.mapper = i == 1 ? "nearest" : "hmm";
+        a.reading.correlation = i != 2;
+        const ReplayOutcome out = replayer.apply(a);
+        REQUIRE(out.mapper == (i == 1 ? MapperKind::Nearest : MapperKind::Hmm));
+        const StrokeReading r = reader.read(a.stroke, tracking.faceMesh(), out.mapper);
+        REQUIRE(out.reading.observations.size() == r.observations.size());
+        if (r.observations.empty()) {
+            REQUIRE(out.kind == ReplayOutcome::Kind::PinsNothing);
+            continue;
+        }
+        REQUIRE(out.kind == ReplayOutcome::Kind::Applied);
+        ApplyOptions apply;
+        apply.correlation = a.reading.correlation;
+        tracking.apply(r, apply);
+        ++applied;
+        REQUIRE(replayer.tracking().face() == tracking.face());
+    }
+    REQUIRE(applied >= 2);
+    REQUIRE(replayer.tracking().strokes() == applied);
+    // The override wins over the action's mapper.
+    const ReplayOutcome nearest = replayer.apply({ strokes[3 % strokes.size()], {} }, MapperKind::Nearest);
+    REQUIRE(nearest.mapper == MapperKind::Nearest);
+    REQUIRE(replayer.undo());
+    REQUIRE(replayer.tracking().face() == tracking.face());
+}
+
+TEST_CASE("replay: a refused stroke and one that pins nothing leave the face unchanged")
+{
+    const auto& w = test::sketchWorld();
+    SessionReplayer replayer(test::device(), w.model, w.candidateFaces, w.flags, {}, "test model");
+    const Eigen::VectorXd before = replayer.tracking().face();
+
+    Stroke bad = frontStrokes().front();
+    bad.points[1].x = std::numeric_limits<double>::quiet_NaN();
+    const ReplayOutcome refused = replayer.apply({ bad, {} });
+    REQUIRE(refused.kind == ReplayOutcome::Kind::Refused);
+    REQUIRE_THAT(refused.error, Catch::Contains("point 1"));
+
+    Stroke off = frontStrokes().front();
+    for (StrokePoint& p : off.points)
+        p.x -= 5000;
+    const ReplayOutcome nothing = replayer.apply({ off, {} });
+    REQUIRE(nothing.kind == ReplayOutcome::Kind::PinsNothing);
+    REQUIRE_FALSE(nothing.reading.message.empty());
+
+    REQUIRE(replayer.tracking().face() == before);
+    REQUIRE(replayer.tracking().strokes() == 0);
+    REQUIRE_FALSE(replayer.undo());
+
+    StrokeAction unknown { frontStrokes().front(), {} };
+    unknown.reading.mapper = "psychic";
+    REQUIRE_THROWS_WITH(replayer.apply(unknown), Catch::Contains("psychic"));
+    REQUIRE(replayer.tracking().face() == before);
+}
