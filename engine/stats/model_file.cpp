@@ -1,161 +1,23 @@
 #include "stats/model_file.h"
 
-#include "core/atomic_file.h"
 #include "core/error.h"
-#include "core/hash.h"
+#include "stats/model_io.h"
 
-#include <bit>
-#include <cstring>
-#include <fstream>
-#include <iterator>
+#include <array>
 #include <limits>
 #include <string>
 
 namespace facesketch::stats {
 
-static_assert(std::endian::native == std::endian::little, "the model file is written in host order");
-
 namespace {
 
-constexpr char kMagic[8] = { 'F', 'S', 'K', 'F', 'A', 'C', 'E', '\0' };
-
-std::uint64_t fnv1a(const std::string& bytes)
-{
-    return facesketch::fnv1a(bytes.data(), bytes.size());
-}
-
-class Writer {
-public:
-    template <typename T> void scalar(T value) { bytes_.append(reinterpret_cast<const char*>(&value), sizeof(T)); }
-    template <typename Derived> void matrix(const Eigen::DenseBase<Derived>& A)
-    {
-        scalar<std::uint64_t>(static_cast<std::uint64_t>(A.rows()));
-        scalar<std::uint64_t>(static_cast<std::uint64_t>(A.cols()));
-        using Scalar = typename Derived::Scalar;
-        const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> plain = A; // column-major
-        bytes_.append(reinterpret_cast<const char*>(plain.data()), sizeof(Scalar) * static_cast<size_t>(plain.size()));
-    }
-    void ppca(const Ppca& p)
-    {
-        matrix(p.mean);
-        matrix(p.W);
-        scalar(p.sigma2);
-    }
-    void mixture(const Mppca& m)
-    {
-        matrix(m.priors);
-        scalar<std::uint64_t>(m.components.size());
-        for (const Ppca& p : m.components)
-            ppca(p);
-    }
-    void text(const std::string& t)
-    {
-        scalar<std::uint64_t>(t.size());
-        bytes_.append(t);
-    }
-    void indices(const std::vector<int>& list)
-    {
-        matrix(Eigen::Map<const Eigen::VectorXi>(list.data(), static_cast<Eigen::Index>(list.size())));
-    }
-    const std::string& bytes() const { return bytes_; }
-
-private:
-    std::string bytes_;
-};
-
-class Reader {
-public:
-    Reader(const std::string& bytes, size_t begin, size_t end, const std::filesystem::path& path)
-        : bytes_(bytes)
-        , at_(begin)
-        , end_(end)
-        , path_(path)
-    {
-    }
-    template <typename T> T scalar(const char* what)
-    {
-        need(sizeof(T), what);
-        T value;
-        std::memcpy(&value, bytes_.data() + at_, sizeof(T));
-        at_ += sizeof(T);
-        return value;
-    }
-    template <typename Scalar> Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> matrix(const char* what)
-    {
-        const auto rows = scalar<std::uint64_t>(what);
-        const auto cols = scalar<std::uint64_t>(what);
-        // Checked by division so a corrupt size cannot overflow the product.
-        if (cols != 0 && rows > (end_ - at_) / sizeof(Scalar) / cols)
-            fail(path_.string(), ": ", what, " claims ", rows, " by ", cols, " values at byte ", at_, ", more than the file holds");
-        Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> A(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
-        const size_t size = sizeof(Scalar) * static_cast<size_t>(rows * cols);
-        if (size > 0)
-            std::memcpy(A.data(), bytes_.data() + at_, size);
-        at_ += size;
-        return A;
-    }
-    Eigen::VectorXd vector(const char* what)
-    {
-        const Eigen::MatrixXd A = matrix<double>(what);
-        if (A.cols() != 1)
-            fail(path_.string(), ": ", what, " is ", A.rows(), " by ", A.cols(), ", expected a column");
-        return A.col(0);
-    }
-    Ppca ppca(const char* what)
-    {
-        Ppca p;
-        p.mean = vector(what);
-        p.W = matrix<double>(what);
-        p.sigma2 = scalar<double>(what);
-        if (p.W.rows() != p.mean.size() || !(p.sigma2 > 0.0))
-            fail(path_.string(), ": ", what, " is inconsistent (", p.mean.size(), " means, W ", p.W.rows(), " by ", p.W.cols(),
-                ", sigma^2 ", p.sigma2, ")");
-        return p;
-    }
-    Mppca mixture(const char* what)
-    {
-        Mppca m;
-        m.priors = vector(what);
-        const auto K = scalar<std::uint64_t>(what);
-        if (K != static_cast<std::uint64_t>(m.priors.size()))
-            fail(path_.string(), ": ", what, " has ", K, " components and ", m.priors.size(), " priors");
-        for (std::uint64_t k = 0; k < K; ++k)
-            m.components.push_back(ppca(what));
-        return m;
-    }
-    std::string text(const char* what)
-    {
-        const auto size = scalar<std::uint64_t>(what);
-        need(size, what);
-        std::string t(bytes_.data() + at_, static_cast<size_t>(size));
-        at_ += static_cast<size_t>(size);
-        return t;
-    }
-    std::vector<int> indices(const char* what)
-    {
-        const Eigen::MatrixXi list = matrix<int>(what);
-        return { list.data(), list.data() + list.size() };
-    }
-    bool done() const { return at_ == end_; }
-    size_t at() const { return at_; }
-
-private:
-    void need(size_t size, const char* what) const
-    {
-        if (end_ - at_ < size)
-            fail(path_.string(), ": truncated at byte ", at_, " reading ", what);
-    }
-    const std::string& bytes_;
-    size_t at_;
-    size_t end_;
-    const std::filesystem::path& path_;
-};
+constexpr std::array<char, 8> kMagic = { 'F', 'S', 'K', 'F', 'A', 'C', 'E', '\0' };
 
 } // namespace
 
 void saveFaceModel(const FaceModel& model, const std::filesystem::path& path)
 {
-    Writer w;
+    PayloadWriter w;
     w.matrix(model.triangles);
     w.matrix(model.meanFace);
     w.matrix(model.segmentation.core);
@@ -185,42 +47,13 @@ void saveFaceModel(const FaceModel& model, const std::filesystem::path& path)
         w.scalar<std::uint8_t>(part.scale ? 1 : 0);
     }
 
-    writeFileAtomically(path, [&](std::ostream& out) {
-        out.write(kMagic, sizeof(kMagic));
-        const std::uint32_t version = kFaceModelVersion;
-        const std::uint64_t length = w.bytes().size();
-        const std::uint64_t hash = fnv1a(w.bytes());
-        out.write(reinterpret_cast<const char*>(&version), sizeof(version));
-        out.write(reinterpret_cast<const char*>(&length), sizeof(length));
-        out.write(w.bytes().data(), static_cast<std::streamsize>(w.bytes().size()));
-        out.write(reinterpret_cast<const char*>(&hash), sizeof(hash));
-    });
+    writeModelContainer(path, kMagic, kFaceModelVersion, w.bytes());
 }
 
 FaceModel loadFaceModel(const std::filesystem::path& path)
 {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        fail(path.string(), ": cannot open the model file");
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    const size_t header = sizeof(kMagic) + sizeof(std::uint32_t) + sizeof(std::uint64_t);
-    if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
-        fail(path.string(), ": not a FaceSketch face model (no FSKFACE header)");
-    Reader head(bytes, sizeof(kMagic), bytes.size(), path);
-    const auto version = head.scalar<std::uint32_t>("the version");
-    if (version != kFaceModelVersion)
-        fail(path.string(), ": model format version ", version, ", this program reads version ", kFaceModelVersion, "; retrain the model");
-    const auto length = head.scalar<std::uint64_t>("the payload length");
-    if (length > bytes.size() - header || bytes.size() - header - length != sizeof(std::uint64_t))
-        fail(path.string(), ": ", bytes.size(), " bytes, but the header announces ", length,
-            " bytes of payload; the file is truncated or has trailing data");
-    const std::string payload = bytes.substr(header, static_cast<size_t>(length));
-    std::uint64_t stored = 0;
-    std::memcpy(&stored, bytes.data() + header + length, sizeof(stored));
-    if (fnv1a(payload) != stored)
-        fail(path.string(), ": checksum mismatch, the file is corrupt");
-
-    Reader r(payload, 0, payload.size(), path);
+    const std::string payload = readModelContainer(path, kMagic, kFaceModelVersion, "face model", "retrain the model");
+    PayloadReader r(payload, 0, payload.size(), path);
     FaceModel model;
     const Eigen::MatrixXi triangles = r.matrix<std::int32_t>("the triangles");
     if (triangles.cols() != 3)
