@@ -22,6 +22,9 @@ void addEvalCommand(CLI::App& root);
 void addSketchCommand(CLI::App& root);
 void addStrokesCommand(CLI::App& root);
 void addRegisterCommand(CLI::App& root);
+/// `facesketch pose` and `facesketch animate` (cmd_pose.cpp).
+void addPoseCommand(CLI::App& root);
+void addAnimateCommand(CLI::App& root);
 /// `facesketch import scans`, a subcommand of `import` (cmd_import.cpp creates `import`).
 void addImportScansCommand(CLI::App& import);
 

@@ -23,6 +23,8 @@ int main(int argc, char** argv)
     app::addSketchCommand(root);
     app::addStrokesCommand(root);
     app::addRegisterCommand(root);
+    app::addPoseCommand(root);
+    app::addAnimateCommand(root);
     app::addImportScansCommand(*root.get_subcommand("import"));
 
     try {

@@ -12,69 +12,11 @@ using namespace facesketch;
 
 namespace {
 
-/// An accessor's float values, read from the loaded buffer (tightly packed, as writeGlb writes).
-std::vector<float> floatsOf(const tinygltf::Model& model, int accessorIndex)
-{
-    const tinygltf::Accessor& accessor = model.accessors.at(static_cast<std::size_t>(accessorIndex));
-    REQUIRE(accessor.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT);
-    const tinygltf::BufferView& view = model.bufferViews.at(static_cast<std::size_t>(accessor.bufferView));
-    const auto& data = model.buffers.at(static_cast<std::size_t>(view.buffer)).data;
-    const std::size_t count
-        = accessor.count * static_cast<std::size_t>(tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(accessor.type)));
-    std::vector<float> values(count);
-    REQUIRE(view.byteOffset + accessor.byteOffset + count * sizeof(float) <= data.size());
-    std::memcpy(values.data(), data.data() + view.byteOffset + accessor.byteOffset, count * sizeof(float));
-    return values;
-}
-
-Vertices asRows(const std::vector<float>& values)
-{
-    Vertices V(static_cast<Eigen::Index>(values.size() / 3), 3);
-    for (std::size_t i = 0; i < values.size(); ++i)
-        V.data()[i] = values[i];
-    return V;
-}
-
-int nodeNamed(const tinygltf::Model& model, const std::string& name)
-{
-    for (std::size_t i = 0; i < model.nodes.size(); ++i)
-        if (model.nodes[i].name == name)
-            return static_cast<int>(i);
-    FAIL("no node named " << name);
-    return -1;
-}
-
-const tinygltf::AnimationSampler& samplerFor(const tinygltf::Model& model, int node, const std::string& path)
-{
-    const tinygltf::Animation& animation = model.animations.at(0);
-    for (const auto& channel : animation.channels)
-        if (channel.target_node == node && channel.target_path == path)
-            return animation.samplers.at(static_cast<std::size_t>(channel.sampler));
-    FAIL("no " << path << " channel for node " << node);
-    return animation.samplers.front();
-}
-
-/// What a glTF client shows at key `k` of the animation plus a fraction `a` of the way to key
-/// k + 1 (LINEAR interpolation of the weights, glTF 2.0 3.11), for the node's morphed mesh.
-Vertices morphedFace(const tinygltf::Model& model, std::size_t k, double a)
-{
-    const int node = nodeNamed(model, "face");
-    const tinygltf::Primitive& primitive
-        = model.meshes.at(static_cast<std::size_t>(model.nodes[static_cast<std::size_t>(node)].mesh)).primitives.at(0);
-    Vertices V = asRows(floatsOf(model, primitive.attributes.at("POSITION")));
-    const std::vector<float> weights = floatsOf(model, samplerFor(model, node, "weights").output);
-    const std::size_t n = primitive.targets.size();
-    REQUIRE(weights.size() % n == 0);
-    Vertices result = V;
-    for (std::size_t j = 0; j < n; ++j) {
-        double w = (1 - a) * weights[k * n + j];
-        if (a > 0)
-            w += a * weights[(k + 1) * n + j];
-        if (w != 0)
-            result += w * asRows(floatsOf(model, primitive.targets[j].at("POSITION")));
-    }
-    return result;
-}
+using test::asRows;
+using test::floatsOf;
+using test::morphedFace;
+using test::nodeNamed;
+using test::samplerFor;
 
 /// The part node's vertices at key k (its TRS channels applied to its mesh).
 Vertices movedPart(const tinygltf::Model& model, const std::string& name, std::size_t k)
@@ -95,19 +37,6 @@ Vertices movedPart(const tinygltf::Model& model, const std::string& name, std::s
     return motion.apply(rest);
 }
 
-tinygltf::Model load(const std::filesystem::path& path)
-{
-    tinygltf::TinyGLTF loader;
-    tinygltf::Model model;
-    std::string error, warning;
-    const bool ok = loader.LoadBinaryFromFile(&model, &error, &warning, path.string());
-    INFO(error << warning);
-    REQUIRE(ok);
-    REQUIRE(error.empty());
-    REQUIRE(warning.empty());
-    return model;
-}
-
 } // namespace
 
 TEST_CASE("gltf export: every sampled frame is what a client shows at its time, and halfway between two is their blend")
@@ -115,7 +44,7 @@ TEST_CASE("gltf export: every sampled frame is what a client shows at its time, 
     test::TempDir dir;
     const GltfAnimation animation = test::makeGltfTestAnimation();
     writeGlb(dir / "a.glb", animation);
-    const tinygltf::Model model = load(dir / "a.glb");
+    const tinygltf::Model model = test::loadGlb(dir / "a.glb");
     REQUIRE(model.animations.size() == 1);
     REQUIRE(model.animations[0].name == animation.name);
     const std::vector<float> times = floatsOf(model, model.animations[0].samplers[0].input);

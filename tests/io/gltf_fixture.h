@@ -8,6 +8,7 @@
 #include "io/gltf_export.h"
 
 #include <nlohmann/json.hpp>
+#include <tiny_gltf.h>
 
 namespace facesketch::test {
 
@@ -20,5 +21,17 @@ Similarity partMotion(const GltfAnimation& animation, std::size_t part, std::siz
 /// 10, three face vertices with the largest displacement from rest and two vertices of each
 /// part, where FaceSketch puts them (mm).
 nlohmann::json gltfExpectations(const GltfAnimation& animation);
+
+/// Reading an exported .glb back (tinygltf), as a client would; Error for anything unexpected.
+tinygltf::Model loadGlb(const std::filesystem::path& path);
+/// An accessor's floats (tightly packed, as writeGlb writes them), and as #V by 3 rows.
+std::vector<float> floatsOf(const tinygltf::Model& model, int accessor);
+Vertices asRows(const std::vector<float>& values);
+int nodeNamed(const tinygltf::Model& model, const std::string& name);
+/// The sampler of node `node`'s channel for `path` ("weights", "translation", ...).
+const tinygltf::AnimationSampler& samplerFor(const tinygltf::Model& model, int node, const std::string& path);
+/// What a client shows of the node "face" at key k plus a fraction a of the way to key k + 1
+/// (LINEAR weights, glTF 2.0 3.11): its base positions plus the weighted morph targets.
+Vertices morphedFace(const tinygltf::Model& model, std::size_t k, double a);
 
 } // namespace facesketch::test
