@@ -34,6 +34,7 @@ void benchTrain(const BenchOptions& options, std::ostream& out);
 void benchSynth(const BenchOptions& options, std::ostream& out);
 void benchSketch(const BenchOptions& options, std::ostream& out);
 void benchRegister(const BenchOptions& options, std::ostream& out);
+void benchPose(const BenchOptions& options, std::ostream& out);
 
 /// Median of `samples` (which it reorders).
 double median(std::vector<double>& samples);

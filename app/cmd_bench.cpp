@@ -52,6 +52,7 @@ const std::vector<Benchmark>& benchmarks()
             "one ~60-point stroke from the session file to the updated face on the synthetic low, high and ultra sets, with its parts",
             benchSketch },
         { "register", "registering one 100,000-triangle scan onto a 6,000-vertex template: depth maps and projection", benchRegister },
+        { "pose", "one timeline frame (cardinal spline + FP-to-mesh mapping rebuild) at about 900, 6,000 and 25,000 vertices", benchPose },
     };
     return all;
 }

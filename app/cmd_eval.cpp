@@ -100,6 +100,7 @@ void addEvalCommand(CLI::App& root)
     addObserveCommand(*eval);
     addEvalContoursCommand(*eval);
     addEvalStrokesCommand(*eval);
+    addEvalPosesCommand(*eval);
 }
 
 } // namespace facesketch::app

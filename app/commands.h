@@ -22,6 +22,8 @@ void addEvalCommand(CLI::App& root);
 void addSketchCommand(CLI::App& root);
 void addStrokesCommand(CLI::App& root);
 void addRegisterCommand(CLI::App& root);
+/// `facesketch train-poses` (cmd_train_poses.cpp): the pose model of a posed dataset.
+void addTrainPosesCommand(CLI::App& root);
 /// `facesketch pose` and `facesketch animate` (cmd_pose.cpp).
 void addPoseCommand(CLI::App& root);
 void addAnimateCommand(CLI::App& root);
@@ -32,6 +34,8 @@ void addImportScansCommand(CLI::App& import);
 void addEvalContoursCommand(CLI::App& eval);
 /// `facesketch eval strokes` (cmd_eval_strokes.cpp).
 void addEvalStrokesCommand(CLI::App& eval);
+/// `facesketch eval poses` (cmd_eval_poses.cpp).
+void addEvalPosesCommand(CLI::App& eval);
 
 /// What `facesketch contours` draws (also used by `facesketch demo`).
 struct ContourPictureOptions {

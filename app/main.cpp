@@ -23,6 +23,7 @@ int main(int argc, char** argv)
     app::addSketchCommand(root);
     app::addStrokesCommand(root);
     app::addRegisterCommand(root);
+    app::addTrainPosesCommand(root);
     app::addPoseCommand(root);
     app::addAnimateCommand(root);
     app::addImportScansCommand(*root.get_subcommand("import"));

@@ -74,7 +74,7 @@ Eigen::VectorXd FeaturePoints::gather(const Vertices& V) const
     return out;
 }
 
-Eigen::VectorXd FeaturePoints::gather(const Eigen::Ref<const Eigen::VectorXd>& face) const
+Eigen::VectorXd FeaturePoints::gatherFlat(const Eigen::Ref<const Eigen::VectorXd>& face) const
 {
     if (face.size() % 3 != 0)
         fail("a face of ", face.size(), " coordinates (not a multiple of 3)");

@@ -39,8 +39,8 @@ struct FeaturePoints {
     /// The 3F vector of the FP positions of a face: FP i at 3i .. 3i+2 = V.row(vertices[i]).
     /// Throws Error if a vertex lies outside V.
     Eigen::VectorXd gather(const Vertices& V) const;
-    /// gather for a face given as a 3#V vector.
-    Eigen::VectorXd gather(const Eigen::Ref<const Eigen::VectorXd>& face) const;
+    /// gather for a face given as a 3#V vector (x0, y0, z0, x1, ...).
+    Eigen::VectorXd gatherFlat(const Eigen::Ref<const Eigen::VectorXd>& face) const;
 };
 
 /// The manifest's `mpeg4` labels in fdpLess order (46 for a full synthetic set; fewer for an
