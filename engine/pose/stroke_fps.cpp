@@ -201,12 +201,27 @@ FpReading identifyFps(const FpClusters& clusters, const std::vector<PoseStrokePo
                 continue;
             }
             ++hits;
+            // An FP two groups share (a lip corner) says nothing about which of them the stroke
+            // draws: its vote is split between them.
+            std::vector<std::size_t> holders;
             for (std::size_t g = 0; g < groups.size(); ++g) {
                 const std::vector<int>& members = clusters.groups[g];
-                if (std::find(members.begin(), members.end(), hit.cluster) != members.end()) {
-                    votes[g] += isEnd(p) ? options.endpointWeight : 1.0;
-                    mass[g] += hit.responsibility;
-                }
+                if (std::find(members.begin(), members.end(), hit.cluster) != members.end())
+                    holders.push_back(g);
+            }
+            for (std::size_t g : holders)
+                votes[g] += (isEnd(p) ? options.endpointWeight : 1.0) / static_cast<double>(holders.size());
+        }
+        // Ties (a stroke that hits only shared FPs) go to the group whose clusters explain all
+        // of its points best: the sum over points of the best log density within the group.
+        for (std::size_t g = 0; g < groups.size(); ++g) {
+            if (votes[g] == 0)
+                continue;
+            for (int p = 0; p < n; ++p) {
+                double best = -std::numeric_limits<double>::infinity();
+                for (int k : clusters.groups[g])
+                    best = std::max(best, clusters.logDensity(k, stroke.world[static_cast<std::size_t>(p)]));
+                mass[g] += best;
             }
         }
         if (hits == 0)

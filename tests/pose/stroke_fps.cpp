@@ -181,7 +181,9 @@ TEST_CASE("stroke fps: short strokes' endpoints are nudged to the corners, at th
     const FpClusters clusters = fpClusters(h.fps, h.training, h.neutral);
     // x from -22 to 22: the ends are 8 mm (Mahalanobis 4.8) from the corners and 10 mm from 8.5,
     // 8.6, so they hit nothing; moved 6 mm towards a corner they hit it.
-    const FpReading reading = identifyFps(clusters, { line(-22, 22, 0, 1) });
+    FpReadingOptions three; // the threshold these distances are made for
+    three.maxMahalanobis = 3;
+    const FpReading reading = identifyFps(clusters, { line(-22, 22, 0, 1) }, three);
     REQUIRE(reading.strokeGroup == std::vector<std::string> { "upper_lip" });
     REQUIRE(namesOf(reading) == std::set<std::string> { "8.1", "8.3", "8.4", "8.5", "8.6", "8.9", "8.10" });
     for (const auto& fp : reading.fps) {
@@ -193,12 +195,12 @@ TEST_CASE("stroke fps: short strokes' endpoints are nudged to the corners, at th
         else // interior points: the stroke point at the cluster's mean
             REQUIRE((fp.position - h.neutral.row(fp.fp).transpose()).norm() < 1e-9);
     }
-    FpReadingOptions noNudge;
+    FpReadingOptions noNudge = three;
     noNudge.nudgeMm = 0;
     REQUIRE(
         namesOf(identifyFps(clusters, { line(-22, 22, 0, 1) }, noNudge)) == std::set<std::string> { "8.1", "8.5", "8.6", "8.9", "8.10" });
     // Nudged 3 mm only, the ends stay 5 mm (Mahalanobis 3.0+) away: not taken.
-    FpReadingOptions shortNudge;
+    FpReadingOptions shortNudge = three;
     shortNudge.nudgeMm = 3;
     REQUIRE(namesOf(identifyFps(clusters, { line(-22, 22, 0, 1) }, shortNudge)).count("8.3") == 0);
 }
@@ -229,7 +231,7 @@ TEST_CASE("stroke fps: a stroke that hits no cluster, and other bad input, are e
     const HandMade h;
     const FpClusters clusters = fpClusters(h.fps, h.training, h.neutral);
     REQUIRE_THROWS_WITH(identifyFps(clusters, { line(-10, 10, 0, 1), line(-10, 10, -60, 1) }),
-        Catch::StartsWith("pose stroke 1 hits no feature point cluster: its nearest is") && Catch::Contains("the threshold is 3"));
+        Catch::StartsWith("pose stroke 1 hits no feature point cluster: its nearest is") && Catch::Contains("the threshold is 4"));
     PoseStrokePoints nan = line(-10, 10, 0, 1);
     nan.world[3].y() = std::nan("");
     REQUIRE_THROWS_WITH(identifyFps(clusters, { nan }), Catch::Contains("pose stroke 0: point 3 is not finite"));
