@@ -47,11 +47,14 @@ void runTrainPoses(const TrainPosesCommand& c)
               << seconds << " s)\n";
     std::cout << "completion (thesis 5.4): K chosen on " << validation.identityCount() << " "
               << (&validation == &contour ? "contour" : "train") << " identities by the minimal-pose error\n";
-    std::cout << std::setw(6) << "K" << std::setw(18) << "minimal mm/FP" << std::setw(20) << "log-lik per pose\n";
+    std::cout << std::setw(6) << "K" << std::setw(8) << "fitted" << std::setw(4) << "q" << std::setw(16) << "minimal mm/FP" << std::setw(20)
+              << "log-lik per pose\n";
     for (const pose::CompletionScore& s : m.completion.scores)
-        std::cout << std::setw(6) << s.components << std::setw(18) << s.minimalError << std::setw(19) << s.logLikelihood << "\n";
-    std::cout << "primary " << m.completion.primary.size() << " components, alternative " << m.completion.alternative.size()
-              << " components\n";
+        std::cout << std::setw(6) << s.components << std::setw(8) << s.fitted << std::setw(4) << s.latentDim << std::setw(16)
+                  << s.minimalError << std::setw(19) << s.logLikelihood << "\n";
+    std::cout << "primary " << m.completion.primary.size() << " components of q = " << m.completion.primary.components.front().latentDim()
+              << ", alternative " << m.completion.alternative.size()
+              << " components of q = " << m.completion.alternative.components.front().latentDim() << "\n";
     std::cout << "mapping (thesis 5.4.1): FP PPCA q = " << m.mapping.fp.latentDim() << ", mesh PPCA q = " << m.mapping.mesh.latentDim()
               << ", joint mixture " << m.mapping.joint.size()
               << " components of q = " << (m.mapping.joint.size() ? m.mapping.joint.components.front().latentDim() : 0) << "\n";
@@ -79,9 +82,10 @@ void addTrainPosesCommand(CLI::App& root)
         ->capture_default_str()
         ->check(CLI::Range(1, 100))
         ->delimiter(',');
-    cmd->add_option("--latent-dim", c->options.completion.latentDim, "Latent dimension of each completion component")
+    cmd->add_option("--latent-dims", c->options.completion.latentDims, "Candidate latent dimensions of the completion components")
         ->capture_default_str()
-        ->check(CLI::Range(1, 1000));
+        ->check(CLI::Range(1, 1000))
+        ->delimiter(',');
     cmd->add_option("--fp-dim", c->options.mapping.fpLatentDim, "Mapping: latent dimension of the FP PPCA")
         ->capture_default_str()
         ->check(CLI::Range(1, 1000));

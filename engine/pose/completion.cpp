@@ -88,30 +88,38 @@ CompletionModel fitCompletion(
         stats::Mppca model;
     };
     std::vector<Fitted> fitted;
+    if (options.latentDims.empty())
+        fail("fitCompletion: no candidate latent dimensions");
     for (int K : options.candidates) {
         if (K < 1)
             fail("fitCompletion: candidate ", K, " components (must be >= 1)");
         if (K > train.rows())
             continue;
-        stats::MppcaOptions o;
-        o.components = K;
-        o.latentDim = static_cast<int>(std::clamp<Eigen::Index>(options.latentDim, 1, d - 1));
-        o.restarts = options.restarts;
-        stats::MppcaFit fit;
-        try {
-            fit = stats::fitMppca(train, o);
-        } catch (const stats::DegenerateFit&) {
-            continue;
+        for (int q : options.latentDims) {
+            if (q < 1)
+                fail("fitCompletion: candidate latent dimension ", q, " (must be >= 1)");
+            stats::MppcaOptions o;
+            o.components = K;
+            o.latentDim = static_cast<int>(std::min<Eigen::Index>(q, d - 1));
+            o.restarts = options.restarts;
+            stats::MppcaFit fit;
+            try {
+                fit = stats::fitMppca(train, o);
+            } catch (const stats::DegenerateFit&) {
+                continue;
+            }
+            Fitted f;
+            f.model = std::move(fit.model);
+            f.score.components = K;
+            f.score.fitted = static_cast<int>(f.model.size());
+            f.score.latentDim = o.latentDim;
+            f.score.minimalError = minimalPoseError(f.model, validation, minimal);
+            f.score.logLikelihood = stats::logLikelihood(f.model, train).mean();
+            fitted.push_back(std::move(f));
         }
-        Fitted f;
-        f.model = std::move(fit.model);
-        f.score.components = static_cast<int>(f.model.size());
-        f.score.minimalError = minimalPoseError(f.model, validation, minimal);
-        f.score.logLikelihood = stats::logLikelihood(f.model, train).mean();
-        fitted.push_back(std::move(f));
     }
     if (fitted.empty())
-        fail("fitCompletion: no candidate number of components could be fit on ", train.rows(), " poses");
+        fail("fitCompletion: no candidate (components, latent dimension) could be fit on ", train.rows(), " poses");
 
     CompletionModel out;
     for (const Fitted& f : fitted)
@@ -125,7 +133,7 @@ CompletionModel fitCompletion(
     out.primary = fitted[order[0]].model;
     out.alternative = out.primary;
     for (size_t i = 1; i < order.size(); ++i)
-        if (fitted[order[i]].score.components != fitted[order[0]].score.components) {
+        if (fitted[order[i]].score.fitted != fitted[order[0]].score.fitted) {
             out.alternative = fitted[order[i]].model;
             break;
         }

@@ -3,13 +3,14 @@
 // displacements, pose_data.h) fills in the feature points a user did not draw, by the
 // conditional mean under the most probable component (stats/conditional.h, thesis 4.2.1.6).
 //
-// Choosing the number of components (thesis 5.4): fit mixtures of K = 1..m components and keep
-// the one that best rebuilds whole poses from a table of minimal incomplete poses
-// (minimal_poses.h), i.e. the smallest total error xi_K = sum_i |r_i - p_i| over the table's
-// entries, here on every validation identity; the training log-likelihood is recorded beside
-// it. Two mixtures with close errors may read an ambiguous input differently (a wide upper lip:
-// open or closed smile, figs. 5.10 and 5.11); the second-best K is kept as the alternative
-// interpretation the user may switch to.
+// Choosing the number of components (thesis 5.4): fit mixtures of K = 1..m components (each
+// with a few latent dimensions q, see CompletionOptions) and keep the one that best rebuilds
+// whole poses from a table of minimal incomplete poses (minimal_poses.h), i.e. the smallest total
+// error xi_K = sum_i |r_i - p_i| over the table's entries, here on every validation identity;
+// the training log-likelihood is recorded beside it. Two mixtures with close errors may read an
+// ambiguous input differently (a wide upper lip: open or closed smile, figs. 5.10 and 5.11); the
+// best fit with another number of components is kept as the alternative interpretation the user
+// may switch to.
 //
 // Everything is in double precision; no 3F by 3F covariance is formed (stats/mppca.h).
 
@@ -49,15 +50,23 @@ stats::Observations observeFps(
 struct CompletionOptions {
     /// Numbers of components to try (thesis: 1..m), each >= 1.
     std::vector<int> candidates { 1, 2, 3, 4, 5, 6, 8, 10 };
-    /// Latent dimension of every component (clamped below the FP dimension 3F).
-    int latentDim = 8;
+    /// Latent dimensions to try with every K (each clamped below the FP dimension 3F). A
+    /// component needs more distinct poses than its latent dimension, or its noise variance
+    /// collapses and EM drops it (stats/mppca.h): when identities share their expressions (the
+    /// ICT blendshapes are the same deltas on every identity) there are only 36 distinct FP
+    /// poses, and a large K needs a small q. So (K, q) is chosen together.
+    std::vector<int> latentDims { 2, 4, 8 };
     /// EM restarts per fit (stats/mppca.h MppcaOptions::restarts).
     int restarts = 2;
 };
 
-/// How one candidate K did.
+/// How one candidate (K, q) did.
 struct CompletionScore {
+    /// K asked for, and the components left after EM dropped collapsed ones.
     int components = 0;
+    int fitted = 0;
+    /// Latent dimension q of every component.
+    int latentDim = 0;
     /// Mean per-FP error (mm) of the poses rebuilt from the minimal table, over every entry and
     /// every validation identity: xi_K divided by the count of FPs rebuilt.
     double minimalError = 0.0;
@@ -68,10 +77,10 @@ struct CompletionScore {
 struct CompletionModel {
     /// The mixture of the lowest minimalError (the one completion uses by default).
     stats::Mppca primary;
-    /// The mixture of the second-lowest minimalError with another K (figs. 5.10, 5.11); equal to
-    /// primary if only one candidate could be fit.
+    /// The mixture of the lowest minimalError among those with another number of fitted
+    /// components (figs. 5.10, 5.11); equal to primary if every fit has the same number.
     stats::Mppca alternative;
-    /// One score per candidate that could be fit, in the order of options.candidates.
+    /// One score per candidate (K, q) that could be fit, K-major in the order of the options.
     std::vector<CompletionScore> scores;
 };
 

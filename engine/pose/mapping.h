@@ -16,8 +16,9 @@
 // face being posed, whatever its identity.
 //
 // Cost of one mapping: O(K (q_P + q_V) q^2) for the conditional, then one 3#V by q_V product
-// (the decoder matrix W (W^T W)^{-1} M of eq. 4.20 is formed once by prepareMapping), about
-// 2 ms at 25,000 vertices.
+// (the decoder matrix W (W^T W)^{-1} M of eq. 4.20 is formed once by prepareMapping): 0.12 ms
+// at 6,118 vertices and under 10 ms at 26,196 on the loaded 2-core machine (BENCHMARKS.md,
+// `facesketch bench pose`).
 //
 // The RBF deformation (thesis 3.2.9, registration/rbf.h): the inverse multiquadric plus affine
 // map that takes the face's neutral FPs onto its posed FPs, applied to every vertex of the

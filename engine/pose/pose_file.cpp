@@ -52,6 +52,8 @@ void savePoseModel(const PoseModel& model, const std::filesystem::path& path)
     w.scalar<std::uint64_t>(model.completion.scores.size());
     for (const CompletionScore& s : model.completion.scores) {
         w.scalar<std::int64_t>(s.components);
+        w.scalar<std::int64_t>(s.fitted);
+        w.scalar<std::int64_t>(s.latentDim);
         w.scalar(s.minimalError);
         w.scalar(s.logLikelihood);
     }
@@ -93,6 +95,8 @@ PoseModel loadPoseModel(const std::filesystem::path& path)
     for (std::uint64_t i = 0; i < scores; ++i) {
         CompletionScore s;
         s.components = static_cast<int>(r.scalar<std::int64_t>("a completion score"));
+        s.fitted = static_cast<int>(r.scalar<std::int64_t>("a completion score"));
+        s.latentDim = static_cast<int>(r.scalar<std::int64_t>("a completion score"));
         s.minimalError = r.scalar<double>("a completion score");
         s.logLikelihood = r.scalar<double>("a completion score");
         model.completion.scores.push_back(s);

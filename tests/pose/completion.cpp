@@ -67,7 +67,7 @@ TEST_CASE("completion: a mixture completes a pose from one FP where one PPCA can
     const PoseSet validation = toySet(10, 4);
     CompletionOptions o;
     o.candidates = { 1, 3 };
-    o.latentDim = 2;
+    o.latentDims = { 2 };
     o.restarts = 2;
     const CompletionModel model = fitCompletion(train.fpDisplacements, validation, kToyTable, o);
     REQUIRE(model.scores.size() == 2);
@@ -90,7 +90,7 @@ TEST_CASE("completion: an FP seen only in a view gets its depth from the model")
     const PoseSet train = toySet(40, 3);
     CompletionOptions o;
     o.candidates = { 3 };
-    o.latentDim = 2;
+    o.latentDims = { 2 };
     const CompletionModel model = fitCompletion(train.fpDisplacements, toySet(10, 4), kToyTable, o);
     // FP 2 of pose A seen from the front: x and y only; its z must come back near 0, and FP 0's x near 1.
     stats::Observations obs;
@@ -109,7 +109,7 @@ TEST_CASE("completion: bad observations and tables are refused")
     const PoseSet train = toySet(20, 3);
     CompletionOptions o;
     o.candidates = { 1 };
-    o.latentDim = 2;
+    o.latentDims = { 2 };
     const CompletionModel model = fitCompletion(train.fpDisplacements, train, kToyTable, o);
     stats::Observations outside;
     outside.addVertex(3, Eigen::Vector3d::Zero());

@@ -21,12 +21,13 @@ TEST_CASE("pose model: trained on the posed set, it keeps the training FP poses 
     REQUIRE(m.fpTrainingPose.size() == static_cast<size_t>(m.fpTraining.rows()));
     CHECK(m.fpTrainingPose[37] == 1); // identity 1, pose 1
     CHECK(m.meanNeutral.isApprox(p.train.neutrals.colwise().mean().transpose()));
-    REQUIRE(m.completion.scores.size() == 3);
+    REQUIRE(m.completion.scores.size() == 6); // K in {1, 2, 4} by q in {2, 8}
     double best = m.completion.scores[0].minimalError;
     for (const CompletionScore& s : m.completion.scores)
         best = std::min(best, s.minimalError);
-    const auto chosen = std::find_if(m.completion.scores.begin(), m.completion.scores.end(),
-        [&](const CompletionScore& s) { return s.components == m.completion.primary.size(); });
+    const auto chosen = std::find_if(m.completion.scores.begin(), m.completion.scores.end(), [&](const CompletionScore& s) {
+        return s.fitted == m.completion.primary.size() && s.latentDim == m.completion.primary.components.front().latentDim();
+    });
     REQUIRE(chosen != m.completion.scores.end());
     CHECK(chosen->minimalError == best);
     CHECK(m.completion.alternative.size() != m.completion.primary.size());

@@ -59,6 +59,7 @@ inline pose::PoseModelOptions smallPoseOptions()
 {
     pose::PoseModelOptions o;
     o.completion.candidates = { 1, 2, 4 };
+    o.completion.latentDims = { 2, 8 };
     o.completion.restarts = 1;
     o.mapping.restarts = 1;
     return o;
