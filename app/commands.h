@@ -26,6 +26,9 @@ void addRegisterCommand(CLI::App& root);
 void addTrainPosesCommand(CLI::App& root);
 /// `facesketch gui`, the interactive app (gui/cmd_gui.cpp).
 void addGuiCommand(CLI::App& root);
+/// `facesketch pose` and `facesketch animate` (cmd_pose.cpp).
+void addPoseCommand(CLI::App& root);
+void addAnimateCommand(CLI::App& root);
 /// `facesketch import scans`, a subcommand of `import` (cmd_import.cpp creates `import`).
 void addImportScansCommand(CLI::App& import);
 

@@ -25,6 +25,8 @@ int main(int argc, char** argv)
     app::addRegisterCommand(root);
     app::addTrainPosesCommand(root);
     app::addGuiCommand(root);
+    app::addPoseCommand(root);
+    app::addAnimateCommand(root);
     app::addImportScansCommand(*root.get_subcommand("import"));
 
     try {

@@ -12,7 +12,15 @@ packages=(
   # gui: real X input events for the app's tests (tests/gui/*.sh); python3 checks their results
   xdotool
   python3
+  # glTF export (issue 13): tinygltf writes the .glb; chromium runs three.js on it in a test
+  libtinygltf-dev
+  chromium
 )
+# The glTF tests' real clients (tools/package.json) run on node; a node from elsewhere (with its
+# own npm) is kept, else Debian's.
+if ! command -v npm >/dev/null 2>&1; then
+  packages+=(nodejs npm)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -21,11 +29,18 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#packages[@]} packages present"
-  exit 0
+else
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  echo "setup: installing ${missing[*]}"
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-sudo_cmd=()
-[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
-echo "setup: installing ${missing[*]}"
-"${sudo_cmd[@]}" apt-get update -qq
-DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+# The npm packages the glTF tests run (gltf-validator, three), pinned by tools/package-lock.json.
+# Installed once into tools/node_modules (git-ignored); the tests then need no network.
+tools="$(cd "$(dirname "$0")" && pwd)"
+if [ ! -f "$tools/node_modules/.package-lock.json" ] || [ "$tools/package-lock.json" -nt "$tools/node_modules/.package-lock.json" ]; then
+  echo "setup: npm ci in $tools"
+  npm ci --prefix "$tools" --no-audit --no-fund --loglevel=error
+fi

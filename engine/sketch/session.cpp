@@ -217,31 +217,90 @@ Session parseSession(const std::string& text, const std::string& where)
         fail(where, ": not a valid session document: ", e.what());
     }
     const Node root { doc, "", where };
-    root.object({ "format", "version", "model", "dataset", "actions" });
+    root.object({ "format", "version", "model", "dataset", "actions", "poses", "face", "timeline" });
     const std::string format = root["format"].text();
     if (format != kSessionFormat)
         root["format"].bad(cat("expected \"", kSessionFormat, "\", found \"", format, "\""));
-    const Node version = root["version"];
-    if (!version.value.is_number_integer() || version.value.get<long long>() != kSessionVersion)
-        version.bad(cat("this build reads version ", kSessionVersion, " only, found ", version.value.dump()));
+    const Node versionNode = root["version"];
+    const long long version = versionNode.value.is_number_integer() ? versionNode.value.get<long long>() : -1;
+    if (version < kSessionOldestVersion || version > kSessionVersion)
+        versionNode.bad(
+            cat("this build reads versions ", kSessionOldestVersion, " to ", kSessionVersion, ", found ", versionNode.value.dump()));
+    if (version == 1)
+        for (const char* key : { "poses", "face", "timeline" })
+            if (root.has(key))
+                fail(where, ": ", key, ": unknown field in version 1 (posing came with version 2)");
 
     Session s;
-    s.model = root["model"].text();
-    if (s.model.empty())
-        root["model"].bad("empty path");
-    s.dataset = root["dataset"].text();
-    if (s.dataset.empty())
-        root["dataset"].bad("empty path");
+    // Version 1 always names model and dataset; version 2 only when it has shape strokes (below).
+    auto path = [&](const char* key, bool required) -> std::filesystem::path {
+        if (!required && !root.has(key))
+            return {};
+        const std::string text = root[key].text();
+        if (text.empty())
+            root[key].bad("empty path");
+        return text;
+    };
+    s.model = path("model", version == 1);
+    s.dataset = path("dataset", version == 1);
+    s.poses = path("poses", false);
+    s.face = path("face", false);
+    if (root.has("timeline")) {
+        const Node timeline = root["timeline"];
+        timeline.object({ "tension" });
+        s.tension = timeline["tension"].number();
+        if (s.tension < 0 || s.tension > 1)
+            timeline["tension"].bad(cat("must lie in [0, 1], found ", s.tension));
+    }
     const Node actions = root["actions"];
     const size_t count = actions.arraySize();
+    std::vector<std::pair<double, size_t>> keyframes;
     for (size_t i = 0; i < count; ++i) {
         const Node a = actions.at(i);
-        a.object({ "type", "stroke", "reading" });
+        if (!a.value.is_object())
+            a.bad(cat("expected an object, found ", a.value.type_name()));
         const std::string type = a["type"].text();
-        if (type != "stroke")
+        if (type == "stroke") {
+            a.object({ "type", "stroke", "reading" });
+            s.actions.push_back({ parseStroke(a["stroke"]), parseReading(a["reading"]) });
+            continue;
+        }
+        if (version == 1)
             a["type"].bad(cat("expected \"stroke\" (the only action of version 1), found \"", type, "\""));
-        s.actions.push_back({ parseStroke(a["stroke"]), parseReading(a["reading"]) });
+        PoseAction pose;
+        pose.afterStrokes = static_cast<int>(s.actions.size());
+        if (type == "pose-stroke") {
+            a.object({ "type", "stroke", "reading" });
+            pose.kind = PoseActionKind::Stroke;
+            pose.stroke = parseStroke(a["stroke"]);
+            const Node reading = a["reading"];
+            reading.object({ "interpretation" });
+            const std::string which = reading["interpretation"].text();
+            if (which != "primary" && which != "alternative")
+                reading["interpretation"].bad(cat("expected \"primary\" or \"alternative\", found \"", which, "\""));
+            pose.alternative = which == "alternative";
+        } else if (type == "keyframe") {
+            a.object({ "type", "time" });
+            pose.kind = PoseActionKind::Keyframe;
+            pose.time = a["time"].number();
+            if (pose.time < 0)
+                a["time"].bad(cat("a keyframe time in seconds cannot be negative, found ", pose.time));
+            for (const auto& [t, at] : keyframes)
+                if (t == pose.time)
+                    a["time"].bad(cat(pose.time, " s is also the time of the keyframe at actions[", at, "]"));
+            keyframes.emplace_back(pose.time, i);
+        } else if (type == "pose-clear") {
+            a.object({ "type" });
+            pose.kind = PoseActionKind::Clear;
+        } else {
+            a["type"].bad(cat("expected \"stroke\", \"pose-stroke\", \"keyframe\" or \"pose-clear\", found \"", type, "\""));
+        }
+        s.poseActions.push_back(std::move(pose));
     }
+    if (!s.actions.empty())
+        for (const char* key : { "model", "dataset" })
+            if (!root.has(key))
+                fail(where, ": ", key, ": missing (the session has shape strokes, which need the face model and its dataset)");
     return s;
 }
 
@@ -257,11 +316,18 @@ Session loadSession(const std::filesystem::path& path)
     return parseSession(text.str(), path.string());
 }
 
+std::filesystem::path sessionPath(const std::filesystem::path& sessionFile, const std::filesystem::path& path)
+{
+    return path.is_absolute() ? path : sessionFile.parent_path() / path;
+}
+
 std::pair<std::filesystem::path, std::filesystem::path> sessionInputs(const Session& session, const std::filesystem::path& sessionFile)
 {
-    const std::filesystem::path folder = sessionFile.parent_path();
-    const std::filesystem::path model = session.model.is_absolute() ? session.model : folder / session.model;
-    const std::filesystem::path dataset = session.dataset.is_absolute() ? session.dataset : folder / session.dataset;
+    if (session.model.empty() || session.dataset.empty())
+        fail(sessionFile.string(), ": ", session.model.empty() ? "model" : "dataset", ": the session names no ",
+            session.model.empty() ? "face model file" : "dataset");
+    const std::filesystem::path model = sessionPath(sessionFile, session.model);
+    const std::filesystem::path dataset = sessionPath(sessionFile, session.dataset);
     if (!std::filesystem::is_regular_file(model))
         fail(sessionFile.string(), ": model: no model file at ", model.string());
     if (!std::filesystem::is_regular_file(dataset / "manifest.json"))
@@ -271,26 +337,56 @@ std::pair<std::filesystem::path, std::filesystem::path> sessionInputs(const Sess
 
 std::string sessionToJson(const Session& session)
 {
-    json actions = json::array();
-    for (const StrokeAction& a : session.actions) {
+    auto strokeJson = [](const Stroke& stroke) {
         json points = json::array();
-        for (const StrokePoint& p : a.stroke.points) {
+        for (const StrokePoint& p : stroke.points) {
             json q { { "x", p.x }, { "y", p.y } };
             if (p.timeMs)
                 q["t"] = *p.timeMs;
             points.push_back(std::move(q));
         }
-        actions.push_back({ { "type", "stroke" },
-            { "stroke",
-                { { "points", std::move(points) }, { "view", viewJson(a.stroke.view) }, { "surface", surfaceName(a.stroke.surface) } } },
+        return json { { "points", std::move(points) }, { "view", viewJson(stroke.view) }, { "surface", surfaceName(stroke.surface) } };
+    };
+    json actions = json::array();
+    std::size_t next = 0; // the next pose action to place
+    auto placePoseActions = [&](std::size_t strokesSoFar) {
+        for (; next < session.poseActions.size(); ++next) {
+            const PoseAction& a = session.poseActions[next];
+            if (a.afterStrokes < 0 || static_cast<std::size_t>(a.afterStrokes) > session.actions.size()
+                || (next > 0 && a.afterStrokes < session.poseActions[next - 1].afterStrokes))
+                fail("session to save: poseActions[", next, "].afterStrokes: ", a.afterStrokes,
+                    " does not place it among the shape strokes (0 to ", session.actions.size(), ", never decreasing)");
+            if (static_cast<std::size_t>(a.afterStrokes) != strokesSoFar)
+                return;
+            if (a.kind == PoseActionKind::Stroke)
+                actions.push_back({ { "type", "pose-stroke" }, { "stroke", strokeJson(a.stroke) },
+                    { "reading", { { "interpretation", a.alternative ? "alternative" : "primary" } } } });
+            else if (a.kind == PoseActionKind::Keyframe)
+                actions.push_back({ { "type", "keyframe" }, { "time", a.time } });
+            else
+                actions.push_back({ { "type", "pose-clear" } });
+        }
+    };
+    for (std::size_t i = 0; i < session.actions.size(); ++i) {
+        placePoseActions(i);
+        const StrokeAction& a = session.actions[i];
+        actions.push_back({ { "type", "stroke" }, { "stroke", strokeJson(a.stroke) },
             { "reading",
                 { { "mapper", a.reading.mapper }, { "correlation", a.reading.correlation }, { "symmetry", a.reading.symmetry } } } });
     }
-    const json doc { { "format", kSessionFormat }, { "version", kSessionVersion }, { "model", session.model.generic_string() },
-        { "dataset", session.dataset.generic_string() }, { "actions", std::move(actions) } };
+    placePoseActions(session.actions.size());
+    json doc { { "format", kSessionFormat }, { "version", kSessionVersion }, { "actions", std::move(actions) } };
+    for (const auto& [key, path] : { std::pair<const char*, const std::filesystem::path*> { "model", &session.model },
+             { "dataset", &session.dataset }, { "poses", &session.poses }, { "face", &session.face } })
+        if (!path->empty())
+            doc[key] = path->generic_string();
+    if (session.tension != 0)
+        doc["timeline"] = { { "tension", session.tension } };
     std::string text = doc.dump(1) + "\n";
     // Whatever the caller built must read back: the same checks as loading, before any write.
-    (void)parseSession(text, "session to save");
+    const Session back = parseSession(text, "session to save");
+    if (!(back == session))
+        fail("session to save: does not read back as itself (a pose action placed after more shape strokes than there are?)");
     return text;
 }
 
@@ -327,9 +423,21 @@ bool operator==(const StrokeAction& a, const StrokeAction& b)
     return a.stroke == b.stroke && a.reading == b.reading;
 }
 
+bool operator==(const PoseAction& a, const PoseAction& b)
+{
+    if (a.kind != b.kind || a.afterStrokes != b.afterStrokes)
+        return false;
+    if (a.kind == PoseActionKind::Stroke)
+        return a.stroke == b.stroke && a.alternative == b.alternative;
+    if (a.kind == PoseActionKind::Keyframe)
+        return a.time == b.time;
+    return true;
+}
+
 bool operator==(const Session& a, const Session& b)
 {
-    return a.model == b.model && a.dataset == b.dataset && a.actions == b.actions;
+    return a.model == b.model && a.dataset == b.dataset && a.actions == b.actions && a.poses == b.poses && a.face == b.face
+        && a.tension == b.tension && a.poseActions == b.poseActions;
 }
 
 } // namespace facesketch::sketch

@@ -78,7 +78,7 @@ TEST_CASE("session: save and load round trip exactly, and saving again gives the
     // Strings hold the field names of docs/session-format.md.
     const auto doc = nlohmann::json::parse(fileText(dir / "s.json"));
     REQUIRE(doc["format"] == "facesketch-session");
-    REQUIRE(doc["version"] == 1);
+    REQUIRE(doc["version"] == kSessionVersion);
     REQUIRE(doc["actions"][2]["stroke"]["surface"] == "profile-plane");
 }
 
@@ -97,8 +97,10 @@ TEST_CASE("session: a truncated or empty file names the file")
 TEST_CASE("session: a wrong format or version is refused")
 {
     auto doc = nlohmann::json::parse(sessionToJson(example()));
-    doc["version"] = 2;
-    REQUIRE_THAT(messageOf(doc.dump()), Catch::StartsWith("s.json: version: ") && Catch::Contains("found 2"));
+    doc["version"] = kSessionVersion + 1;
+    REQUIRE_THAT(messageOf(doc.dump()), Catch::StartsWith("s.json: version: ") && Catch::Contains(cat("found ", kSessionVersion + 1)));
+    doc["version"] = 0;
+    REQUIRE_THAT(messageOf(doc.dump()), Catch::StartsWith("s.json: version: ") && Catch::Contains("found 0"));
     doc["version"] = "1";
     REQUIRE_THAT(messageOf(doc.dump()), Catch::StartsWith("s.json: version: "));
     doc["version"] = 1;
@@ -213,4 +215,140 @@ TEST_CASE("session: saving a bad session throws naming the field and leaves the 
     REQUIRE(fileText(dir / "s.json") == before);
     for (const auto& entry : fs::directory_iterator(dir.path()))
         REQUIRE(entry.path().filename() == "s.json"); // no temporary left behind
+}
+
+namespace {
+
+// example() with posing (version 2): actions in the file are
+// stroke, pose-stroke, keyframe 0, stroke, stroke, pose-clear, pose-stroke, keyframe 2.5.
+Session posingExample()
+{
+    Session s = example();
+    s.poses = "poses.model";
+    s.face = "face.ply";
+    s.tension = 0.25;
+    PoseAction stroke;
+    stroke.stroke = s.actions[0].stroke;
+    stroke.afterStrokes = 1;
+    stroke.alternative = true;
+    s.poseActions.push_back(stroke);
+    PoseAction key;
+    key.kind = PoseActionKind::Keyframe;
+    key.afterStrokes = 1;
+    s.poseActions.push_back(key);
+    PoseAction clear;
+    clear.kind = PoseActionKind::Clear;
+    clear.afterStrokes = 3;
+    s.poseActions.push_back(clear);
+    stroke.alternative = false;
+    stroke.afterStrokes = 3;
+    stroke.stroke = s.actions[1].stroke;
+    s.poseActions.push_back(stroke);
+    key.time = 2.5;
+    key.afterStrokes = 3;
+    s.poseActions.push_back(key);
+    return s;
+}
+
+} // namespace
+
+TEST_CASE("session: pose strokes, keyframes and clears round trip in their place among the shape strokes")
+{
+    test::TempDir dir;
+    const Session s = posingExample();
+    saveSession(dir / "s.json", s);
+    const Session back = loadSession(dir / "s.json");
+    REQUIRE(back == s);
+    saveSession(dir / "t.json", back);
+    REQUIRE(fileText(dir / "s.json") == fileText(dir / "t.json"));
+    const auto doc = nlohmann::json::parse(fileText(dir / "s.json"));
+    std::vector<std::string> types;
+    for (const auto& a : doc["actions"])
+        types.push_back(a["type"]);
+    REQUIRE(types
+        == std::vector<std::string> { "stroke", "pose-stroke", "keyframe", "stroke", "stroke", "pose-clear", "pose-stroke", "keyframe" });
+    REQUIRE(doc["actions"][1]["reading"]["interpretation"] == "alternative");
+    REQUIRE(doc["actions"][7]["time"] == 2.5);
+    REQUIRE(doc["poses"] == "poses.model");
+    REQUIRE(doc["face"] == "face.ply");
+    REQUIRE(doc["timeline"]["tension"] == 0.25);
+    REQUIRE(sessionPath(dir / "s.json", back.poses) == dir / "poses.model");
+    // Posing alone needs no face model: a version 2 session without model and dataset.
+    Session posing;
+    posing.poses = "/abs/poses.model";
+    posing.poseActions = { s.poseActions[0] };
+    posing.poseActions[0].afterStrokes = 0;
+    REQUIRE(parseSession(sessionToJson(posing), "p.json") == posing);
+    REQUIRE(sessionPath(dir / "s.json", posing.poses) == "/abs/poses.model");
+}
+
+TEST_CASE("session: a version 1 file still loads, and posing in one is refused")
+{
+    const std::string v1 = R"({"format": "facesketch-session", "version": 1, "model": "m.model", "dataset": "d",
+        "actions": [{"type": "stroke", "stroke": {"points": [{"x": 1, "y": 2}],
+            "view": {"target": [0, 0, 0], "azimuth": 0, "elevation": 0, "distance": 300, "projection": "orthographic",
+                     "half_height": 100, "fov_y": 0.5, "near": 1, "far": 1000, "width": 64, "height": 64},
+            "surface": "face"}, "reading": {"mapper": "hmm", "correlation": true, "symmetry": false}}]})";
+    const Session s = parseSession(v1, "old.json");
+    REQUIRE(s.actions.size() == 1);
+    REQUIRE(s.actions[0].stroke.points[0].y == 2);
+    REQUIRE(s.poseActions.empty());
+    REQUIRE(s.model == "m.model");
+    auto doc = nlohmann::json::parse(v1);
+    doc["actions"].push_back({ { "type", "keyframe" }, { "time", 1.0 } });
+    REQUIRE_THAT(messageOf(doc.dump()), Catch::StartsWith("s.json: actions[1].type: expected \"stroke\" (the only action of version 1)"));
+    doc = nlohmann::json::parse(v1);
+    doc["poses"] = "p.model";
+    REQUIRE_THAT(messageOf(doc.dump()), Catch::StartsWith("s.json: poses: unknown field in version 1"));
+    doc = nlohmann::json::parse(v1);
+    doc.erase("model");
+    REQUIRE_THAT(messageOf(doc.dump()), Catch::StartsWith("s.json: model: missing"));
+}
+
+TEST_CASE("session: bad pose actions are named by their JSON path, and nothing is saved")
+{
+    using nlohmann::json;
+    const json good = json::parse(sessionToJson(posingExample()));
+    REQUIRE(messageOf(good.dump()).empty());
+    struct Case {
+        std::string pointer;
+        json value;
+        std::string path;
+    };
+    const std::vector<Case> cases = {
+        { "/actions/7/time", 0.0, "actions[7].time: 0 s is also the time of the keyframe at actions[2]" },
+        { "/actions/2/time", -1.0, "actions[2].time: a keyframe time in seconds cannot be negative" },
+        { "/actions/2/time", "soon", "actions[2].time: expected a number" },
+        { "/actions/1/reading/interpretation", "maybe", "actions[1].reading.interpretation: expected \"primary\" or \"alternative\"" },
+        { "/actions/1/stroke/points/0/x", nullptr, "actions[1].stroke.points[0].x: expected a number" },
+        { "/actions/5/stroke", json::object(), "actions[5].stroke: unknown field" },
+        { "/actions/5/type", "pose-undo", "actions[5].type: expected \"stroke\", \"pose-stroke\", \"keyframe\" or \"pose-clear\"" },
+        { "/timeline/tension", 1.5, "timeline.tension: must lie in [0, 1]" },
+        { "/timeline/speed", 1.0, "timeline.speed: unknown field" },
+        { "/poses", "", "poses: empty path" },
+        { "/face", 7, "face: expected a string" },
+    };
+    for (const Case& c : cases) {
+        json doc = good;
+        doc[json::json_pointer(c.pointer)] = c.value;
+        INFO(c.pointer);
+        REQUIRE_THAT(messageOf(doc.dump()), Catch::StartsWith("s.json: " + c.path));
+    }
+    json doc = good;
+    doc.erase("model");
+    REQUIRE_THAT(messageOf(doc.dump()), Catch::StartsWith("s.json: model: missing (the session has shape strokes"));
+
+    test::TempDir dir;
+    saveSession(dir / "s.json", posingExample());
+    const std::string before = fileText(dir / "s.json");
+    Session bad = posingExample();
+    bad.poseActions[4].time = 0;
+    REQUIRE_THROWS_WITH(saveSession(dir / "s.json", bad), Catch::Contains("time: 0 s is also the time of the keyframe"));
+    bad = posingExample();
+    bad.poseActions[1].afterStrokes = 0;
+    REQUIRE_THROWS_WITH(saveSession(dir / "s.json", bad), Catch::Contains("poseActions[1].afterStrokes: 0"));
+    bad = posingExample();
+    bad.poseActions[3].stroke.points.clear();
+    REQUIRE_THROWS_WITH(saveSession(dir / "s.json", bad), Catch::Contains("actions[6].stroke.points: a stroke needs at least one point"));
+    REQUIRE(fileText(dir / "s.json") == before);
 }

@@ -1,0 +1,297 @@
+#include "pose/stroke_fps.h"
+
+#include "core/error.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace facesketch::pose {
+
+namespace {
+
+double logSumExp(const Eigen::VectorXd& values)
+{
+    const double top = values.maxCoeff();
+    return top + std::log((values.array() - top).exp().sum());
+}
+
+/// Per point of one stroke: which cluster it hits within `allowed` (or -1), and how well.
+struct PointHit {
+    int cluster = -1;
+    double logDensity = -std::numeric_limits<double>::infinity();
+    double responsibility = 0; ///< of the winner, within `allowed`
+};
+
+PointHit hitWithin(const FpClusters& clusters, const std::vector<int>& allowed, const Eigen::Vector3d& x, double maxMahalanobis)
+{
+    Eigen::VectorXd l(static_cast<Eigen::Index>(allowed.size()));
+    for (std::size_t i = 0; i < allowed.size(); ++i)
+        l(static_cast<Eigen::Index>(i)) = clusters.logDensity(allowed[i], x);
+    Eigen::Index best = 0;
+    l.maxCoeff(&best);
+    PointHit hit;
+    const int k = allowed[static_cast<std::size_t>(best)];
+    if (clusters.mahalanobis(k, x) > maxMahalanobis)
+        return hit;
+    hit.cluster = k;
+    hit.logDensity = l(best);
+    hit.responsibility = std::exp(l(best) - logSumExp(l));
+    return hit;
+}
+
+} // namespace
+
+const std::vector<FpGroup>& fpGroups()
+{
+    static const std::vector<FpGroup> groups = {
+        { "brow_left", { "4.1", "4.3", "4.5" }, { "4.1", "4.5" } },
+        { "brow_right", { "4.2", "4.4", "4.6" }, { "4.2", "4.6" } },
+        { "upper_lid_left", { "3.1", "3.7", "3.11" }, { "3.7", "3.11" } },
+        { "lower_lid_left", { "3.3", "3.7", "3.11" }, { "3.7", "3.11" } },
+        { "upper_lid_right", { "3.2", "3.8", "3.12" }, { "3.8", "3.12" } },
+        { "lower_lid_right", { "3.4", "3.8", "3.12" }, { "3.8", "3.12" } },
+        { "upper_lip", { "8.1", "8.3", "8.4", "8.5", "8.6", "8.9", "8.10" }, { "8.3", "8.4" } },
+        { "lower_lip", { "8.2", "8.3", "8.4", "8.7", "8.8" }, { "8.3", "8.4" } },
+        { "nose", { "9.1", "9.2", "9.3", "9.15" }, { "9.1", "9.2" } },
+        { "cheek_left", { "5.3" }, {} },
+        { "cheek_right", { "5.4" }, {} },
+        { "chin", { "2.1", "2.10" }, { "2.1" } },
+    };
+    return groups;
+}
+
+double FpClusters::logDensity(int k, const Eigen::Vector3d& x) const
+{
+    const Eigen::Vector3d d = x - mean[static_cast<std::size_t>(k)];
+    return logNormaliser[static_cast<std::size_t>(k)] - 0.5 * d.dot(precision[static_cast<std::size_t>(k)] * d);
+}
+
+double FpClusters::mahalanobis(int k, const Eigen::Vector3d& x) const
+{
+    const Eigen::Vector3d d = x - mean[static_cast<std::size_t>(k)];
+    return std::sqrt(std::max(0.0, d.dot(precision[static_cast<std::size_t>(k)] * d)));
+}
+
+FpClusters fpClusters(const FeaturePoints& fps, const Eigen::MatrixXd& fpTraining, const Vertices& neutral, const FpClusterOptions& options)
+{
+    const Eigen::Index F = fps.size();
+    if (fpTraining.cols() != 3 * F)
+        fail("FP training poses: ", fpTraining.cols(), " columns, expected 3 x ", F, " FPs");
+    if (fpTraining.rows() < 2)
+        fail("FP training poses: ", fpTraining.rows(), " rows, at least 2 are needed for a cluster's spread");
+    if (!fpTraining.allFinite())
+        fail("FP training poses: not finite");
+    if (!(options.minStdMm >= 0) || !std::isfinite(options.minStdMm))
+        fail("FP clusters: minStdMm ", options.minStdMm, " is not >= 0");
+
+    FpClusters clusters;
+    const auto& groups = fpGroups();
+    auto clusterOf = [&](const std::string& name) -> int {
+        const auto it = std::find(clusters.names.begin(), clusters.names.end(), name);
+        if (it != clusters.names.end())
+            return static_cast<int>(it - clusters.names.begin());
+        const int i = fps.index(name);
+        if (i < 0)
+            fail("FP clusters: the pose model has no feature point ", name, " (a sketchable FP, thesis 5.3)");
+        const int v = fps.vertices[static_cast<std::size_t>(i)];
+        if (v < 0 || v >= neutral.rows())
+            fail("FP clusters: FP ", name, " is vertex ", v, ", the face has ", neutral.rows(), " vertices");
+        const Eigen::Vector3d base = neutral.row(v).transpose();
+        if (!base.allFinite())
+            fail("FP clusters: the face's vertex ", v, " (FP ", name, ") is not finite");
+        const Eigen::MatrixXd d = fpTraining.middleCols(3 * i, 3);
+        const Eigen::Vector3d mean = d.colwise().mean().transpose();
+        const Eigen::MatrixXd centred = d.rowwise() - mean.transpose();
+        Eigen::Matrix3d covariance = centred.transpose() * centred / static_cast<double>(d.rows());
+        covariance += options.minStdMm * options.minStdMm * Eigen::Matrix3d::Identity();
+        // A point that never moves in training and minStdMm 0 would leave a singular cluster.
+        const Eigen::LLT<Eigen::Matrix3d> llt(covariance);
+        if (llt.info() != Eigen::Success || covariance.determinant() <= 0)
+            fail("FP clusters: FP ", name, " never moves in training; use minStdMm > 0");
+        clusters.fp.push_back(i);
+        clusters.names.push_back(name);
+        clusters.mean.push_back(base + mean);
+        clusters.covariance.push_back(covariance);
+        clusters.precision.push_back(llt.solve(Eigen::Matrix3d::Identity()));
+        clusters.logNormaliser.push_back(-0.5 * std::log(std::pow(2 * std::numbers::pi, 3) * covariance.determinant()));
+        return static_cast<int>(clusters.names.size()) - 1;
+    };
+    for (const FpGroup& group : groups) {
+        std::vector<int> members, ends;
+        for (const std::string& name : group.fps)
+            members.push_back(clusterOf(name));
+        for (const std::string& name : group.boundary)
+            ends.push_back(clusterOf(name));
+        clusters.groups.push_back(members);
+        clusters.boundary.push_back(ends);
+    }
+    return clusters;
+}
+
+FpReading identifyFps(const FpClusters& clusters, const std::vector<PoseStrokePoints>& strokes, const FpReadingOptions& options)
+{
+    if (!(options.maxMahalanobis > 0) || !std::isfinite(options.maxMahalanobis))
+        fail("pose strokes: maxMahalanobis ", options.maxMahalanobis, " is not > 0");
+    if (!(options.endpointWeight >= 1) || !std::isfinite(options.endpointWeight))
+        fail("pose strokes: endpointWeight ", options.endpointWeight, " is not >= 1");
+    if (!(options.nudgeMm >= 0) || !std::isfinite(options.nudgeMm))
+        fail("pose strokes: nudgeMm ", options.nudgeMm, " is not >= 0");
+    if (clusters.size() == 0)
+        fail("pose strokes: no feature point clusters");
+
+    std::vector<int> all(static_cast<std::size_t>(clusters.size()));
+    for (int k = 0; k < clusters.size(); ++k)
+        all[static_cast<std::size_t>(k)] = k;
+    const auto& groups = fpGroups();
+    const double endpointBonus = std::log(options.endpointWeight);
+
+    FpReading reading;
+    // Best candidate per cluster over all strokes (step 5).
+    std::vector<IdentifiedFp> best(static_cast<std::size_t>(clusters.size()));
+    auto offer = [&](int k, const PoseStrokePoints& stroke, int s, int p, const Eigen::Vector3d& at, double score, bool nudged) {
+        IdentifiedFp& b = best[static_cast<std::size_t>(k)];
+        if (b.fp >= 0 && b.score >= score)
+            return;
+        b.fp = clusters.fp[static_cast<std::size_t>(k)];
+        b.name = clusters.names[static_cast<std::size_t>(k)];
+        b.position = at;
+        b.plane = stroke.plane;
+        b.stroke = s;
+        b.point = p;
+        b.score = score;
+        b.nudged = nudged;
+    };
+
+    // Every stroke is checked before any is read.
+    for (std::size_t s = 0; s < strokes.size(); ++s) {
+        const PoseStrokePoints& stroke = strokes[s];
+        if (stroke.world.empty())
+            fail("pose stroke ", s, ": no points");
+        for (std::size_t p = 0; p < stroke.world.size(); ++p)
+            if (!stroke.world[p].allFinite())
+                fail("pose stroke ", s, ": point ", p, " is not finite");
+        if (!stroke.plane.allFinite()
+            || (stroke.plane * stroke.plane.transpose() - Eigen::Matrix2d::Identity()).cwiseAbs().maxCoeff() > 1e-9)
+            fail("pose stroke ", s, ": the rows of its sketch plane are not orthonormal");
+    }
+
+    for (std::size_t s = 0; s < strokes.size(); ++s) {
+        const PoseStrokePoints& stroke = strokes[s];
+        const int n = static_cast<int>(stroke.world.size());
+        const int si = static_cast<int>(s);
+        auto isEnd = [&](int p) { return p == 0 || p == n - 1; };
+
+        // Step 3: the group the stroke hits most.
+        std::vector<double> votes(groups.size(), 0.0), mass(groups.size(), 0.0);
+        int hits = 0;
+        int nearest = -1;
+        double nearestDistance = std::numeric_limits<double>::infinity();
+        for (int p = 0; p < n; ++p) {
+            const Eigen::Vector3d& x = stroke.world[static_cast<std::size_t>(p)];
+            const PointHit hit = hitWithin(clusters, all, x, options.maxMahalanobis);
+            if (hit.cluster < 0) {
+                for (int k = 0; k < clusters.size(); ++k)
+                    if (clusters.mahalanobis(k, x) < nearestDistance) {
+                        nearestDistance = clusters.mahalanobis(k, x);
+                        nearest = k;
+                    }
+                continue;
+            }
+            ++hits;
+            // An FP two groups share (a lip corner) says nothing about which of them the stroke
+            // draws: its vote is split between them.
+            std::vector<std::size_t> holders;
+            for (std::size_t g = 0; g < groups.size(); ++g) {
+                const std::vector<int>& members = clusters.groups[g];
+                if (std::find(members.begin(), members.end(), hit.cluster) != members.end())
+                    holders.push_back(g);
+            }
+            for (std::size_t g : holders)
+                votes[g] += (isEnd(p) ? options.endpointWeight : 1.0) / static_cast<double>(holders.size());
+        }
+        // Ties (a stroke that hits only shared FPs) go to the group whose clusters explain all
+        // of its points best: the sum over points of the best log density within the group.
+        for (std::size_t g = 0; g < groups.size(); ++g) {
+            if (votes[g] == 0)
+                continue;
+            for (int p = 0; p < n; ++p) {
+                double best = -std::numeric_limits<double>::infinity();
+                for (int k : clusters.groups[g])
+                    best = std::max(best, clusters.logDensity(k, stroke.world[static_cast<std::size_t>(p)]));
+                mass[g] += best;
+            }
+        }
+        if (hits == 0)
+            fail("pose stroke ", s, " hits no feature point cluster: its nearest is ", clusters.names[static_cast<std::size_t>(nearest)],
+                " at Mahalanobis distance ", nearestDistance, ", the threshold is ", options.maxMahalanobis);
+        std::size_t group = 0;
+        for (std::size_t g = 1; g < groups.size(); ++g)
+            if (votes[g] > votes[group] || (votes[g] == votes[group] && mass[g] > mass[group]))
+                group = g;
+        reading.strokeGroup.push_back(groups[group].name);
+        reading.strokeHits.push_back(hits);
+
+        // Steps 4 and 5 within the group.
+        const std::vector<int>& members = clusters.groups[group];
+        int firstEnd = -1; // the cluster the stroke's first point took, which the last may not take again
+        for (int p = 0; p < n; ++p) {
+            const Eigen::Vector3d& x = stroke.world[static_cast<std::size_t>(p)];
+            const double bonus = isEnd(p) ? endpointBonus : 0.0;
+            const PointHit hit = hitWithin(clusters, members, x, options.maxMahalanobis);
+            if (hit.cluster >= 0) {
+                offer(hit.cluster, stroke, si, p, x, hit.logDensity + bonus, false);
+                if (p == 0)
+                    firstEnd = hit.cluster;
+                continue;
+            }
+            if (!isEnd(p) || options.nudgeMm == 0)
+                continue;
+            int nudgedTo = -1;
+            double nudgedScore = -std::numeric_limits<double>::infinity();
+            for (int b : clusters.boundary[group]) {
+                if (p > 0 && b == firstEnd)
+                    continue;
+                const Eigen::Vector3d towards = clusters.mean[static_cast<std::size_t>(b)] - x;
+                const double distance = towards.norm();
+                const Eigen::Vector3d moved = distance <= options.nudgeMm ? Eigen::Vector3d(clusters.mean[static_cast<std::size_t>(b)])
+                                                                          : Eigen::Vector3d(x + towards * (options.nudgeMm / distance));
+                const PointHit h = hitWithin(clusters, members, moved, options.maxMahalanobis);
+                if (h.cluster == b && h.logDensity > nudgedScore) {
+                    nudgedTo = b;
+                    nudgedScore = h.logDensity;
+                }
+            }
+            if (nudgedTo >= 0) {
+                // The FP sits where the user ended the stroke: a short stroke asks for a narrower feature.
+                offer(nudgedTo, stroke, si, p, x, nudgedScore + bonus, true);
+                if (p == 0)
+                    firstEnd = nudgedTo;
+            }
+        }
+    }
+
+    for (const IdentifiedFp& fp : best)
+        if (fp.fp >= 0)
+            reading.fps.push_back(fp);
+    return reading;
+}
+
+stats::Observations poseObservations(const FeaturePoints& fps, const Vertices& neutral, const FpReading& reading)
+{
+    stats::Observations observed;
+    for (const IdentifiedFp& fp : reading.fps) {
+        if (fp.fp < 0 || fp.fp >= fps.size())
+            fail("pose observations: FP index ", fp.fp, " outside the model's ", fps.size(), " FPs");
+        const int v = fps.vertices[static_cast<std::size_t>(fp.fp)];
+        if (v < 0 || v >= neutral.rows())
+            fail("pose observations: FP ", fp.name, " is vertex ", v, ", the face has ", neutral.rows(), " vertices");
+        const Eigen::Vector3d displacement = fp.position - neutral.row(v).transpose();
+        observed.addProjectedVertex(fp.fp, fp.plane, fp.plane * displacement);
+    }
+    return observed;
+}
+
+} // namespace facesketch::pose

@@ -1,0 +1,254 @@
+// Feature points from strokes (thesis 5.3): strokes along a pose's own lip contour, hand-made
+// clusters with known answers for the endpoint rules, and bad input.
+#include "pose/stroke_fps.h"
+
+#include "core/error.h"
+#include "dataset/synth/face_generator.h"
+#include "dataset/synth/face_params.h"
+#include "dataset/synth/pose_recipes.h"
+#include "test_common.h"
+
+#include <algorithm>
+#include <set>
+
+using namespace facesketch;
+using namespace facesketch::pose;
+
+namespace {
+
+const dataset::PoseRecipe& recipe(const std::string& name)
+{
+    for (const auto& r : dataset::poseRecipes())
+        if (r.name == name)
+            return r;
+    FAIL("no pose recipe " << name);
+    return dataset::poseRecipes().front();
+}
+
+/// Synthetic low-resolution faces: the FP displacements of the 36 poses of identities 0-7, and
+/// identity 20 (not among them) to pose.
+struct SynthPoses {
+    dataset::FaceTopology topology = dataset::buildFaceTopology(dataset::Resolution::Low);
+    FeaturePoints fps = featurePoints(topology.labels, "synthetic topology");
+    Eigen::MatrixXd training;
+    dataset::FaceParams face = dataset::sampleFaceParams(1, 20);
+    Vertices neutral = dataset::synthesizeFace(topology, face);
+
+    SynthPoses()
+    {
+        const auto& recipes = dataset::poseRecipes();
+        training.resize(8 * static_cast<Eigen::Index>(recipes.size()), 3 * fps.size());
+        for (int i = 0; i < 8; ++i) {
+            const dataset::FaceParams params = dataset::sampleFaceParams(1, i);
+            const Eigen::VectorXd rest = fps.gather(dataset::synthesizeFace(topology, params));
+            for (std::size_t p = 0; p < recipes.size(); ++p)
+                training.row(i * static_cast<Eigen::Index>(recipes.size()) + static_cast<Eigen::Index>(p))
+                    = (fps.gather(dataset::synthesizeFace(topology, params, recipes[p].actions)) - rest).transpose();
+        }
+    }
+};
+
+Eigen::Matrix<double, 2, 3> frontPlane()
+{
+    Eigen::Matrix<double, 2, 3> P;
+    P << 1, 0, 0, 0, 1, 0;
+    return P;
+}
+
+std::set<std::string> namesOf(const FpReading& reading)
+{
+    std::set<std::string> names;
+    for (const auto& fp : reading.fps)
+        names.insert(fp.name);
+    return names;
+}
+
+/// Hand-made clusters: every sketchable FP far from the others (a 100 mm grid), except the
+/// lips: upper lip along y = 0 (8.4 at x = -30, 8.5 -12, 8.9 -6, 8.1 0, 8.10 6, 8.6 12, 8.3 30),
+/// lower lip along y = -20. Training moves every FP by 1 mm along x or y, so each cluster has
+/// covariance diag(0.5, 0.5, 0) + 1.5^2 I.
+struct HandMade {
+    FeaturePoints fps;
+    Vertices neutral;
+    Eigen::MatrixXd training;
+
+    HandMade()
+    {
+        const std::map<std::string, Eigen::Vector3d> lips = { { "8.4", { -30, 0, 0 } }, { "8.5", { -12, 0, 0 } }, { "8.9", { -6, 0, 0 } },
+            { "8.1", { 0, 0, 0 } }, { "8.10", { 6, 0, 0 } }, { "8.6", { 12, 0, 0 } }, { "8.3", { 30, 0, 0 } }, { "8.7", { -15, -20, 0 } },
+            { "8.2", { 0, -20, 0 } }, { "8.8", { 15, -20, 0 } } };
+        std::vector<std::string> names;
+        for (const auto& group : fpGroups())
+            for (const auto& name : group.fps)
+                if (std::find(names.begin(), names.end(), name) == names.end())
+                    names.push_back(name);
+        std::sort(names.begin(), names.end(), fdpLess);
+        neutral.resize(static_cast<Eigen::Index>(names.size()), 3);
+        for (std::size_t i = 0; i < names.size(); ++i) {
+            fps.names.push_back(names[i]);
+            fps.vertices.push_back(static_cast<int>(i));
+            const auto lip = lips.find(names[i]);
+            neutral.row(static_cast<Eigen::Index>(i)) = lip != lips.end()
+                ? lip->second.transpose()
+                : Eigen::RowVector3d(100.0 * (1 + static_cast<double>(i % 6)), 100.0 * static_cast<double>(1 + i / 6), 0);
+        }
+        training = Eigen::MatrixXd::Zero(4, 3 * fps.size());
+        for (Eigen::Index f = 0; f < fps.size(); ++f) {
+            training(0, 3 * f) = 1;
+            training(1, 3 * f) = -1;
+            training(2, 3 * f + 1) = 1;
+            training(3, 3 * f + 1) = -1;
+        }
+    }
+};
+
+PoseStrokePoints line(double x0, double x1, double y, double step)
+{
+    PoseStrokePoints stroke;
+    stroke.plane = frontPlane();
+    for (double x = x0; x <= x1 + 1e-9; x += step)
+        stroke.world.emplace_back(x, y, 0);
+    return stroke;
+}
+
+} // namespace
+
+TEST_CASE("stroke fps: a stroke along the open smile's upper lip finds the upper lip's FPs where the smile has them")
+{
+    const SynthPoses s;
+    REQUIRE(s.fps.size() == 46);
+    const FpClusters clusters = fpClusters(s.fps, s.training, s.neutral);
+    REQUIRE(clusters.size() == 32);
+    const Vertices smile = dataset::synthesizeFace(s.topology, s.face, recipe("smile_open").actions);
+    PoseStrokePoints stroke;
+    stroke.plane = frontPlane();
+    for (int v : s.topology.labels.contours.at("lip_upper_outer"))
+        stroke.world.emplace_back(smile.row(v).transpose());
+    const FpReading reading = identifyFps(clusters, { stroke });
+    REQUIRE(reading.strokeGroup == std::vector<std::string> { "upper_lip" });
+    const std::set<std::string> found = namesOf(reading);
+    INFO("found " << found.size() << " FPs");
+    // The corners and the midpoint lie on the contour; every FP found is an upper-lip FP.
+    for (const std::string name : { "8.1", "8.3", "8.4" })
+        REQUIRE(found.count(name) == 1);
+    const auto& upper = fpGroups()[6];
+    REQUIRE(upper.name == "upper_lip");
+    for (const auto& fp : reading.fps) {
+        INFO(fp.name);
+        REQUIRE(std::find(upper.fps.begin(), upper.fps.end(), fp.name) != upper.fps.end());
+        // Where the smile has that FP, seen from the front (the depth is the completion's).
+        const Eigen::Vector3d target = smile.row(s.fps.vertices[static_cast<std::size_t>(fp.fp)]).transpose();
+        REQUIRE((frontPlane() * (fp.position - target)).norm() < 3.0);
+    }
+    // The open smile's corners are far from the neutral ones: the strokes did not just find the rest face.
+    const int corner = s.fps.vertices[static_cast<std::size_t>(s.fps.index("8.3"))];
+    REQUIRE((smile.row(corner) - s.neutral.row(corner)).norm() > 4.0);
+
+    // The observations hand the completion the FPs' sketch-plane displacements (2 each).
+    const stats::Observations observed = poseObservations(s.fps, s.neutral, reading);
+    REQUIRE(observed.size() == 2 * static_cast<Eigen::Index>(reading.fps.size()));
+    Eigen::VectorXd expected(observed.size());
+    for (std::size_t i = 0; i < reading.fps.size(); ++i)
+        expected.segment<2>(2 * static_cast<Eigen::Index>(i)) = frontPlane()
+            * (reading.fps[i].position - s.neutral.row(s.fps.vertices[static_cast<std::size_t>(reading.fps[i].fp)]).transpose());
+    REQUIRE((observed.values() - expected).norm() < 1e-12);
+}
+
+TEST_CASE("stroke fps: the lower lip and a lowered brow go to their own groups")
+{
+    const SynthPoses s;
+    const FpClusters clusters = fpClusters(s.fps, s.training, s.neutral);
+    const Vertices anger = dataset::synthesizeFace(s.topology, s.face, recipe("anger").actions);
+    std::vector<PoseStrokePoints> strokes(2);
+    for (auto& stroke : strokes)
+        stroke.plane = frontPlane();
+    for (int v : s.topology.labels.contours.at("lip_lower_outer"))
+        strokes[0].world.emplace_back(anger.row(v).transpose());
+    for (int v : s.topology.labels.contours.at("eyebrow_l"))
+        strokes[1].world.emplace_back(anger.row(v).transpose());
+    const FpReading reading = identifyFps(clusters, strokes);
+    REQUIRE(reading.strokeGroup == std::vector<std::string> { "lower_lip", "brow_left" });
+    const std::set<std::string> found = namesOf(reading);
+    REQUIRE(found.count("8.2") == 1);
+    REQUIRE(found.count("4.3") == 1);
+    for (const auto& fp : reading.fps)
+        REQUIRE((fp.name.rfind("8.", 0) == 0 || fp.name.rfind("4.", 0) == 0));
+}
+
+TEST_CASE("stroke fps: short strokes' endpoints are nudged to the corners, at the endpoints")
+{
+    const HandMade h;
+    const FpClusters clusters = fpClusters(h.fps, h.training, h.neutral);
+    // x from -22 to 22: the ends are 8 mm (Mahalanobis 4.8) from the corners and 10 mm from 8.5,
+    // 8.6, so they hit nothing; moved 6 mm towards a corner they hit it.
+    FpReadingOptions three; // the threshold these distances are made for
+    three.maxMahalanobis = 3;
+    const FpReading reading = identifyFps(clusters, { line(-22, 22, 0, 1) }, three);
+    REQUIRE(reading.strokeGroup == std::vector<std::string> { "upper_lip" });
+    REQUIRE(namesOf(reading) == std::set<std::string> { "8.1", "8.3", "8.4", "8.5", "8.6", "8.9", "8.10" });
+    for (const auto& fp : reading.fps) {
+        INFO(fp.name);
+        const bool corner = fp.name == "8.3" || fp.name == "8.4";
+        REQUIRE(fp.nudged == corner);
+        if (corner)
+            REQUIRE(fp.position.isApprox(Eigen::Vector3d(fp.name == "8.3" ? 22 : -22, 0, 0)));
+        else // interior points: the stroke point at the cluster's mean
+            REQUIRE((fp.position - h.neutral.row(fp.fp).transpose()).norm() < 1e-9);
+    }
+    FpReadingOptions noNudge = three;
+    noNudge.nudgeMm = 0;
+    REQUIRE(
+        namesOf(identifyFps(clusters, { line(-22, 22, 0, 1) }, noNudge)) == std::set<std::string> { "8.1", "8.5", "8.6", "8.9", "8.10" });
+    // Nudged 3 mm only, the ends stay 5 mm (Mahalanobis 3.0+) away: not taken.
+    FpReadingOptions shortNudge = three;
+    shortNudge.nudgeMm = 3;
+    REQUIRE(namesOf(identifyFps(clusters, { line(-22, 22, 0, 1) }, shortNudge)).count("8.3") == 0);
+}
+
+TEST_CASE("stroke fps: an endpoint outweighs a slightly likelier interior point of the same FP")
+{
+    const HandMade h;
+    const FpClusters clusters = fpClusters(h.fps, h.training, h.neutral);
+    // The stroke starts 1 mm from 8.4's mean, then passes exactly through it.
+    PoseStrokePoints stroke = line(-30, 0, 0, 1);
+    stroke.world.insert(stroke.world.begin(), Eigen::Vector3d(-29, 0, 0));
+    auto cornerAt = [&](const FpReadingOptions& options) {
+        for (const auto& fp : identifyFps(clusters, { stroke }, options).fps)
+            if (fp.name == "8.4")
+                return fp.position.x();
+        FAIL("8.4 not found");
+        return 0.0;
+    };
+    FpReadingOptions weighted; // endpointWeight 2: log 2 = 0.69 beats the 0.18 density gap
+    REQUIRE(cornerAt(weighted) == -29);
+    FpReadingOptions flat;
+    flat.endpointWeight = 1;
+    REQUIRE(cornerAt(flat) == -30);
+}
+
+TEST_CASE("stroke fps: a stroke that hits no cluster, and other bad input, are errors naming the stroke or FP")
+{
+    const HandMade h;
+    const FpClusters clusters = fpClusters(h.fps, h.training, h.neutral);
+    REQUIRE_THROWS_WITH(identifyFps(clusters, { line(-10, 10, 0, 1), line(-10, 10, -60, 1) }),
+        Catch::StartsWith("pose stroke 1 hits no feature point cluster: its nearest is") && Catch::Contains("the threshold is 4"));
+    PoseStrokePoints nan = line(-10, 10, 0, 1);
+    nan.world[3].y() = std::nan("");
+    REQUIRE_THROWS_WITH(identifyFps(clusters, { nan }), Catch::Contains("pose stroke 0: point 3 is not finite"));
+    REQUIRE_THROWS_WITH(identifyFps(clusters, { PoseStrokePoints { {}, frontPlane() } }), Catch::Contains("pose stroke 0: no points"));
+    PoseStrokePoints skew = line(-10, 10, 0, 1);
+    skew.plane(0, 1) = 0.5;
+    REQUIRE_THROWS_WITH(identifyFps(clusters, { skew }), Catch::Contains("pose stroke 0: the rows of its sketch plane"));
+    FpReadingOptions bad;
+    bad.endpointWeight = 0.5;
+    REQUIRE_THROWS_WITH(identifyFps(clusters, { line(-10, 10, 0, 1) }, bad), Catch::Contains("endpointWeight 0.5"));
+
+    FeaturePoints missing = h.fps;
+    const int corner = missing.index("8.3");
+    missing.names[static_cast<std::size_t>(corner)] = "8.30";
+    REQUIRE_THROWS_WITH(fpClusters(missing, h.training, h.neutral), Catch::Contains("no feature point 8.3 "));
+    REQUIRE_THROWS_WITH(fpClusters(h.fps, h.training.leftCols(9), h.neutral), Catch::Contains("9 columns"));
+    Vertices nanFace = h.neutral;
+    nanFace(corner, 2) = std::nan("");
+    REQUIRE_THROWS_WITH(fpClusters(h.fps, h.training, nanFace), Catch::Contains("FP 8.3") && Catch::Contains("not finite"));
+}
