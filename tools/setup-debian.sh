@@ -9,6 +9,9 @@ packages=(
   libglfw3-dev libglm-dev libeigen3-dev libimgui-dev catch2
   libtinyobjloader-dev nlohmann-json3-dev libcli11-dev libstb-dev libmeshoptimizer-dev
   xvfb xauth clang-format
+  # issue 17: the libFuzzer targets of tests/fuzz (tools/fuzz.sh, FACESKETCH_FUZZ=ON)
+  clang-14
+  libfuzzer-14-dev
 )
 
 missing=()

@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/limits.h"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_STATIC
@@ -30,6 +31,12 @@ void writePng(const std::filesystem::path& path, const Image& image)
 Image readPng(const std::filesystem::path& path)
 {
     int w = 0, h = 0, channels = 0;
+    if (!stbi_info(path.string().c_str(), &w, &h, &channels))
+        fail(path.string(), ": cannot read PNG: ", stbi_failure_reason());
+    // The header's size, checked before stb allocates for it.
+    if (static_cast<std::int64_t>(w) * h > limits::kMaxImagePixels)
+        fail(path.string(), ": PNG of ", w, " by ", h, " pixels, more than the ", limits::kMaxImagePixels,
+            " pixels an image may have (docs/limits.md)");
     unsigned char* data = stbi_load(path.string().c_str(), &w, &h, &channels, 4);
     if (!data)
         fail(path.string(), ": cannot read PNG: ", stbi_failure_reason());

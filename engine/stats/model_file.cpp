@@ -3,6 +3,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/hash.h"
+#include "core/limits.h"
 
 #include <bit>
 #include <cstring>
@@ -84,8 +85,10 @@ public:
     {
         const auto rows = scalar<std::uint64_t>(what);
         const auto cols = scalar<std::uint64_t>(what);
-        // Checked by division so a corrupt size cannot overflow the product.
-        if (cols != 0 && rows > (end_ - at_) / sizeof(Scalar) / cols)
+        // Checked by division so a corrupt size cannot overflow the product; each side on its
+        // own too, as a matrix with no columns may claim any number of rows.
+        constexpr std::uint64_t kMaxSide = std::uint64_t(1) << 32;
+        if (rows > kMaxSide || cols > kMaxSide || (cols != 0 && rows > (end_ - at_) / sizeof(Scalar) / cols))
             fail(path_.string(), ": ", what, " claims ", rows, " by ", cols, " values at byte ", at_, ", more than the file holds");
         Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> A(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
         const size_t size = sizeof(Scalar) * static_cast<size_t>(rows * cols);
@@ -107,7 +110,8 @@ public:
         p.mean = vector(what);
         p.W = matrix<double>(what);
         p.sigma2 = scalar<double>(what);
-        if (p.W.rows() != p.mean.size() || !(p.sigma2 > 0.0))
+        // q <= d keeps everything derived from W (the q by q W^T W) within the file's size.
+        if (p.W.rows() != p.mean.size() || p.W.cols() > p.W.rows() || !(p.sigma2 > 0.0))
             fail(path_.string(), ": ", what, " is inconsistent (", p.mean.size(), " means, W ", p.W.rows(), " by ", p.W.cols(),
                 ", sigma^2 ", p.sigma2, ")");
         return p;
@@ -199,10 +203,9 @@ void saveFaceModel(const FaceModel& model, const std::filesystem::path& path)
 
 FaceModel loadFaceModel(const std::filesystem::path& path)
 {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
+    if (!std::filesystem::is_regular_file(path))
         fail(path.string(), ": cannot open the model file");
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string bytes = limits::readFileLimited(path, limits::kMaxModelFileBytes, "a face model file");
     const size_t header = sizeof(kMagic) + sizeof(std::uint32_t) + sizeof(std::uint64_t);
     if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
         fail(path.string(), ": not a FaceSketch face model (no FSKFACE header)");
@@ -248,7 +251,7 @@ FaceModel loadFaceModel(const std::filesystem::path& path)
     HeadLayout& layout = model.head;
     const auto headVertices = r.scalar<std::int64_t>("the head vertex count");
     const auto skinBegin = r.scalar<std::int64_t>("the skin offset");
-    if (headVertices < 0 || headVertices > std::numeric_limits<int>::max() || skinBegin < 0 || skinBegin > headVertices)
+    if (headVertices < 0 || headVertices > limits::kMaxMeshVertices || skinBegin < 0 || skinBegin > headVertices)
         fail(path.string(), ": head of ", headVertices, " vertices with the skin from ", skinBegin);
     layout.vertexCount = static_cast<int>(headVertices);
     layout.skinBegin = static_cast<int>(skinBegin);
@@ -283,11 +286,16 @@ FaceModel loadFaceModel(const std::filesystem::path& path)
         inconsistent("mean face of ", model.meanFace.size(), " values, ", model.segmentation.core.size(), " segment labels");
     if (model.triangles.size() > 0 && (model.triangles.minCoeff() < 0 || model.triangles.maxCoeff() >= vertices))
         inconsistent("a triangle index outside [0, ", vertices, ")");
+    if (model.segmentation.core.size() > 0
+        && (model.segmentation.core.minCoeff() < 0 || static_cast<std::uint64_t>(model.segmentation.core.maxCoeff()) >= groups))
+        inconsistent("a segment label outside [0, ", groups, ")");
     Eigen::Index latents = 0;
     for (std::uint64_t s = 0; s < segments; ++s) {
         const auto& members = model.segmentation.vertices[s];
         const SegmentModel& sm = model.segments[s];
         const auto d = 3 * static_cast<Eigen::Index>(members.size());
+        if (members.empty())
+            inconsistent("segment ", s, " has no vertices");
         for (int v : members)
             if (v < 0 || v >= vertices)
                 inconsistent("segment ", s, " holds vertex ", v, " outside [0, ", vertices, ")");
@@ -301,6 +309,13 @@ FaceModel loadFaceModel(const std::filesystem::path& path)
     for (const Ppca& p : model.correlation.components)
         if (p.dim() != latents)
             inconsistent("the correlation mixture has dimension ", p.dim(), ", expected ", latents);
+    // Every head vertex is skin or in one rigid part: check the count before validateHeadLayout
+    // allocates per head vertex.
+    Eigen::Index partVertices = 0;
+    for (const RigidPart& part : layout.parts)
+        partVertices += static_cast<Eigen::Index>(part.vertices.size());
+    if (layout.vertexCount > vertices + partVertices)
+        inconsistent("a head of ", layout.vertexCount, " vertices from ", vertices, " skin and ", partVertices, " rigid-part vertices");
     if (layout.vertexCount > 0)
         validateHeadLayout(layout, vertices, path.string() + ": inconsistent model");
     else if (!layout.parts.empty() || layout.topology.size() > 0)

@@ -2,6 +2,9 @@
 #include "core/error.h"
 #include "test_common.h"
 
+#include <fstream>
+#include <iterator>
+
 using namespace facesketch;
 
 TEST_CASE("png: round trip keeps every pixel")
@@ -25,4 +28,19 @@ TEST_CASE("png: unreadable and inconsistent images are errors naming the file")
     Image wrong { 4, 4, std::vector<std::uint8_t>(10) };
     REQUIRE_THROWS_WITH(writePng(dir / "w.png", wrong), Catch::Contains("w.png"));
     REQUIRE_FALSE(std::filesystem::exists(dir / "w.png"));
+}
+
+TEST_CASE("png: a header declaring more pixels than the limit is refused before decoding")
+{
+    test::TempDir dir;
+    Image small { 2, 2, std::vector<std::uint8_t>(16, 200) };
+    writePng(dir / "small.png", small);
+    std::ifstream in(dir / "small.png", std::ios::binary);
+    std::string bytes { std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>() };
+    // IHDR width and height (big-endian, bytes 16 and 20): 100,000 by 100,000, 40 GB as RGBA.
+    const unsigned char side[4] = { 0x00, 0x01, 0x86, 0xA0 };
+    bytes.replace(16, 4, reinterpret_cast<const char*>(side), 4);
+    bytes.replace(20, 4, reinterpret_cast<const char*>(side), 4);
+    test::writeText(dir / "huge.png", bytes);
+    REQUIRE_THROWS_WITH(readPng(dir / "huge.png"), Catch::Contains("huge.png: PNG of 100000 by 100000 pixels, more than the 67108864"));
 }

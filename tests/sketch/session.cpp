@@ -214,3 +214,11 @@ TEST_CASE("session: saving a bad session throws naming the field and leaves the 
     for (const auto& entry : fs::directory_iterator(dir.path()))
         REQUIRE(entry.path().filename() == "s.json"); // no temporary left behind
 }
+
+TEST_CASE("session: a deeply nested or 10 MB-string document is refused before parsing, naming the byte")
+{
+    REQUIRE_THROWS_WITH(parseSession("{\"actions\": " + std::string(1000000, '['), "s.json"),
+        Catch::Contains("s.json: byte 75: arrays and objects nested more than 64 deep"));
+    REQUIRE_THROWS_WITH(parseSession("{\"model\": \"" + std::string(10 << 20, 'm') + "\"}", "s.json"),
+        Catch::Contains("s.json: byte 10: a string longer than 65536 bytes"));
+}
