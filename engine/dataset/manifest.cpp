@@ -258,7 +258,8 @@ Manifest readManifest(const std::filesystem::path& path)
     json doc;
     try {
         doc = json::parse(text);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {
+        // parse_error, or out_of_range for a number too large for a double (1e999).
         fail(where, ": not valid JSON: ", e.what());
     }
     const Reader r { where };
