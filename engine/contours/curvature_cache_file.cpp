@@ -69,8 +69,10 @@ bool readCurvatureCacheFile(const std::filesystem::path& file, std::uint64_t key
         return why = "checksum mismatch (corrupt)", false;
     packed.shapes.resize(4 * n);
     packed.c23.resize(n);
-    std::memcpy(packed.shapes.data(), bytes.data() + kHeader, 16 * n);
-    std::memcpy(packed.c23.data(), bytes.data() + kHeader + 16 * n, 4 * n);
+    if (n > 0) { // an empty vector's data() may be null, which memcpy may not be given
+        std::memcpy(packed.shapes.data(), bytes.data() + kHeader, 16 * n);
+        std::memcpy(packed.c23.data(), bytes.data() + kHeader + 16 * n, 4 * n);
+    }
     return true;
 }
 

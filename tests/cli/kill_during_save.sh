@@ -11,7 +11,7 @@
 set -euo pipefail
 facesketch=$1
 work=$2
-rounds=${3:-40}
+rounds=${3:-30}
 rm -rf "$work"
 mkdir -p "$work"
 cd "$work"

@@ -69,3 +69,16 @@ TEST_CASE("curvature_cache_file: a file reads back for its batch only, and what 
     std::filesystem::resize_file(dir / "huge.curv", std::uint64_t(1) << 36);
     REQUIRE(refused("huge.curv", 42, 2, 3) == "truncated (68719476736 bytes, expected 164)");
 }
+
+TEST_CASE("curvature_cache_file: a batch of no vertices reads back empty")
+{
+    // Found by the curvature_cache fuzz target (tests/fuzz/curvature_cache/regress-batch-of-no-vertices.bin):
+    // the empty shapes were copied through a null pointer.
+    test::TempDir dir;
+    writeBytes(dir / "empty.curv", encodeCurvatureCache(7, 3, 0, {}));
+    GpuCurvature::PackedShapes back;
+    std::string why;
+    REQUIRE(readCurvatureCacheFile(dir / "empty.curv", 7, 3, 0, back, why));
+    REQUIRE(back.shapes.empty());
+    REQUIRE(back.c23.empty());
+}
