@@ -32,6 +32,8 @@ inline constexpr int kMaxJsonDepth = 64;
 inline constexpr std::uint64_t kMaxJsonStringBytes = std::uint64_t(1) << 16;
 /// Bytes of a face model file: 16 GiB (a model at 6,000 vertices is tens of megabytes).
 inline constexpr std::uint64_t kMaxModelFileBytes = std::uint64_t(1) << 34;
+/// Bytes of a PNG file read: 256 MiB.
+inline constexpr std::uint64_t kMaxImageFileBytes = std::uint64_t(1) << 28;
 /// Pixels of a PNG read: 2^26 (8192 by 8192), 256 MiB as RGBA.
 inline constexpr std::int64_t kMaxImagePixels = std::int64_t(1) << 26;
 
