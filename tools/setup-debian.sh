@@ -15,6 +15,9 @@ packages=(
   # glTF export (issue 13): tinygltf writes the .glb; chromium runs three.js on it in a test
   libtinygltf-dev
   chromium
+  # issue 17: the libFuzzer targets of tests/fuzz (tools/fuzz.sh, FACESKETCH_FUZZ=ON)
+  clang-14
+  libfuzzer-14-dev
 )
 # The glTF tests' real clients (tools/package.json) run on node; a node from elsewhere (with its
 # own npm) is kept, else Debian's.

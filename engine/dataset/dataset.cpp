@@ -1,8 +1,10 @@
 #include "dataset/dataset.h"
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "io/mesh_io.h"
 
+#include <algorithm>
 #include <random>
 #include <unistd.h>
 
@@ -12,14 +14,34 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// validateManifest already refuses absolute names and "..": this also refuses a symbolic link
+// (of the file or of a folder on its way) that leads out of the dataset folder.
+void checkInside(const fs::path& folder, const fs::path& file, const std::string& where, const std::string& field)
+{
+    std::error_code ec;
+    const fs::path root = fs::weakly_canonical(folder, ec);
+    const fs::path target = ec ? fs::path() : fs::weakly_canonical(folder / file, ec);
+    if (ec)
+        fail(where, ": ", field, ": '", file.string(), "': ", ec.message());
+    const auto [end, ignored] = std::mismatch(root.begin(), root.end(), target.begin(), target.end());
+    if (end != root.end())
+        fail(where, ": ", field, ": '", file.string(), "' leads outside the dataset folder (to ", target.string(), ")");
+}
+
 void checkFilesExist(const fs::path& folder, const Manifest& m, const std::string& where)
 {
-    for (size_t i = 0; i < m.samples.size(); ++i)
+    for (size_t i = 0; i < m.samples.size(); ++i) {
+        const std::string field = cat("samples[", i, "].file");
         if (!fs::is_regular_file(folder / m.samples[i].file))
-            fail(where, ": samples[", i, "].file: '", m.samples[i].file.string(), "' does not exist");
-    for (size_t i = 0; i < m.poses.size(); ++i)
+            fail(where, ": ", field, ": '", m.samples[i].file.string(), "' does not exist");
+        checkInside(folder, m.samples[i].file, where, field);
+    }
+    for (size_t i = 0; i < m.poses.size(); ++i) {
+        const std::string field = cat("poses[", i, "].file");
         if (!fs::is_regular_file(folder / m.poses[i].file))
-            fail(where, ": poses[", i, "].file: '", m.poses[i].file.string(), "' does not exist");
+            fail(where, ": ", field, ": '", m.poses[i].file.string(), "' does not exist");
+        checkInside(folder, m.poses[i].file, where, field);
+    }
 }
 
 } // namespace
@@ -104,23 +126,35 @@ void writeDataset(const fs::path& folderIn, const Manifest& manifest, const std:
     const fs::path old = parent / cat(".", folder.filename().string(), ".old-", tag);
     try {
         fs::create_directory(tmp);
-        fill(tmp);
-        writeManifest(tmp / "manifest.json", manifest);
-        checkFilesExist(tmp, manifest, (folder / "manifest.json").string());
-        // rename() cannot replace a non-empty folder, so the old one steps aside first and is
-        // deleted only after the new one is in place.
-        const bool replacing = fs::exists(folder);
-        if (replacing)
-            fs::rename(folder, old);
-        try {
-            fs::rename(tmp, folder);
-        } catch (...) {
-            if (replacing)
-                fs::rename(old, folder);
-            throw;
+        {
+            const StagingFolder staging(tmp);
+            fill(tmp);
+            writeManifest(tmp / "manifest.json", manifest);
         }
-        if (replacing)
+        checkFilesExist(tmp, manifest, (folder / "manifest.json").string());
+        // Every file of the new folder reaches the disk before its name is published.
+        syncFilesystem(tmp);
+        if (fs::exists(folder) && exchangePaths(tmp, folder)) {
+            // One atomic step: `folder` names the whole old dataset, then the whole new one.
+            syncPath(parent);
+            fs::remove_all(tmp); // now the old dataset
+        } else if (fs::exists(folder)) {
+            // A file system without RENAME_EXCHANGE: rename() cannot replace a non-empty
+            // folder, so the old one steps aside first (a crash between the two renames leaves
+            // it at `.NAME.old-*`) and is deleted only after the new one is in place.
+            fs::rename(folder, old);
+            try {
+                fs::rename(tmp, folder);
+            } catch (...) {
+                fs::rename(old, folder);
+                throw;
+            }
+            syncPath(parent);
             fs::remove_all(old);
+        } else {
+            fs::rename(tmp, folder);
+            syncPath(parent);
+        }
     } catch (const fs::filesystem_error& e) {
         std::error_code ignored;
         fs::remove_all(tmp, ignored);

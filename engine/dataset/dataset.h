@@ -36,10 +36,16 @@ Eigen::RowVectorXd flatten(const Vertices& V);
 Vertices unflatten(const Eigen::Ref<const Eigen::RowVectorXd>& row);
 
 /// Writes a dataset folder atomically: `fill(tmp)` writes the meshes into an empty temporary
-/// sibling folder, then the manifest is validated and written there, every listed file is
-/// checked to exist, and the temporary folder is renamed to `folder`. An existing `folder`
-/// is replaced only if it is empty or holds a manifest.json (i.e. it is a dataset); on any
-/// failure the temporary folder is removed and `folder` is untouched.
+/// sibling folder `.NAME.tmp-*`, then the manifest is validated and written there, every listed
+/// file is checked to exist, everything is flushed to disk (core/atomic_file.h StagingFolder),
+/// and the temporary folder is swapped with `folder` in one atomic step (renameat2
+/// RENAME_EXCHANGE) before the old one is deleted. So at every moment, even if the process is
+/// killed, `folder` is a complete dataset: the whole old one or the whole new one, where
+/// complete means manifest.json and every sample and pose file it lists, all fully written
+/// (tests/cli/kill_during_save.sh). A kill may leave a `.NAME.tmp-*` folder beside it,
+/// never read. An existing `folder` is replaced only if it is empty or holds a manifest.json
+/// (i.e. it is a dataset); on any failure the temporary folder is removed and `folder` is
+/// untouched.
 void writeDataset(
     const std::filesystem::path& folder, const Manifest& manifest, const std::function<void(const std::filesystem::path& tmp)>& fill);
 

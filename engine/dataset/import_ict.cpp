@@ -32,7 +32,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double kCmToMm = 10.0;
-constexpr int kIctVertexCount = 26719;
 
 // Vertex ranges of the full ICT mesh (ICT-FaceKit README), half-open.
 struct Range {
@@ -69,32 +68,6 @@ fs::path modelFolder(const fs::path& path)
     fail(path.string(), ": no FaceXModel/generic_neutral_mesh.obj (not an ICT-FaceKit folder)");
 }
 
-std::vector<int> readLandmarkIndices(const fs::path& folder)
-{
-    const fs::path file = folder / "vertex_indices.json";
-    if (!fs::exists(file))
-        return { std::begin(kReadmeLandmarks), std::end(kReadmeLandmarks) };
-    std::ifstream in(file);
-    nlohmann::json doc;
-    try {
-        doc = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::exception& e) {
-        fail(file.string(), ": not valid JSON: ", e.what());
-    }
-    if (!doc.is_object() || !doc.contains("idx_to_landmark_verts") || !doc["idx_to_landmark_verts"].is_array())
-        fail(file.string(), ": idx_to_landmark_verts: missing or not an array");
-    const auto& list = doc["idx_to_landmark_verts"];
-    if (list.size() != 68)
-        fail(file.string(), ": idx_to_landmark_verts: has ", list.size(), " entries, expected the 68 Multi-PIE points");
-    std::vector<int> out;
-    for (size_t i = 0; i < list.size(); ++i) {
-        if (!list[i].is_number_integer() || list[i].get<long>() < 0 || list[i].get<long>() >= kIctVertexCount)
-            fail(file.string(), ": idx_to_landmark_verts[", i, "]: '", list[i].dump(), "' is not a vertex index below ", kIctVertexCount);
-        out.push_back(list[i].get<int>());
-    }
-    return out;
-}
-
 } // namespace
 
 const char* ictRegionName(IctRegion region)
@@ -115,39 +88,6 @@ IctRegion parseIctRegion(const std::string& text)
     return parseName(text, std::array { IctRegion::NarrowFace, IctRegion::Face, IctRegion::HeadNeck }, ictRegionName, "region");
 }
 
-IctPoseRecipes readIctPoseRecipes(const fs::path& path)
-{
-    std::ifstream in(path);
-    if (!in)
-        fail(path.string(), ": cannot open the pose recipe file");
-    nlohmann::ordered_json doc;
-    try {
-        doc = nlohmann::ordered_json::parse(in);
-    } catch (const nlohmann::json::exception& e) {
-        fail(path.string(), ": not valid JSON: ", e.what());
-    }
-    if (!doc.is_object() || doc.empty())
-        fail(path.string(), ": expected an object {\"pose\": {\"blendshape\": weight}}");
-    IctPoseRecipes out;
-    std::set<std::string> names;
-    for (const auto& [name, shapes] : doc.items()) {
-        if (name.empty() || name.find_first_of("/\\") != std::string::npos || name[0] == '.')
-            fail(path.string(), ": pose name '", name, "' is empty or not file-name safe");
-        if (!names.insert(name).second)
-            fail(path.string(), ": ", name, ": duplicate pose");
-        if (!shapes.is_object())
-            fail(path.string(), ": ", name, ": expected an object {\"blendshape\": weight}");
-        std::map<std::string, double> recipe;
-        for (const auto& [shape, weight] : shapes.items()) {
-            if (!weight.is_number() || !std::isfinite(weight.get<double>()))
-                fail(path.string(), ": ", name, ".", shape, ": weight '", weight.dump(), "' is not a finite number");
-            recipe[shape] = weight.get<double>();
-        }
-        out.push_back({ name, recipe });
-    }
-    return out;
-}
-
 IctModel loadIctModel(const fs::path& path, const IctOptions& options, const std::vector<std::string>& blendshapes)
 {
     const fs::path folder = modelFolder(path);
@@ -155,7 +95,9 @@ IctModel loadIctModel(const fs::path& path, const IctOptions& options, const std
     const Mesh full = readObj(neutralFile);
     if (full.vertexCount() != kIctVertexCount)
         fail(neutralFile.string(), ": has ", full.vertexCount(), " vertices, the ICT Face Model has ", kIctVertexCount);
-    const std::vector<int> pie = readLandmarkIndices(folder);
+    const fs::path landmarkFile = folder / "vertex_indices.json";
+    const std::vector<int> pie = fs::exists(landmarkFile) ? readIctLandmarkIndices(landmarkFile)
+                                                          : std::vector<int>(std::begin(kReadmeLandmarks), std::end(kReadmeLandmarks));
 
     // Kept vertex ranges, in output order; skin first.
     const int skinEnd = options.region == IctRegion::NarrowFace ? 6706 : options.region == IctRegion::Face ? 9409 : 11248;

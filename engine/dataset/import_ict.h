@@ -111,9 +111,17 @@ struct IctOptions {
 /// The pose recipes: pose name -> {ICT blendshape name -> weight}, in file order.
 using IctPoseRecipes = std::vector<std::pair<std::string, std::map<std::string, double>>>;
 
+/// Vertices of the full ICT Face Model mesh (generic_neutral_mesh.obj).
+inline constexpr int kIctVertexCount = 26719;
+
 /// Reads a recipe file; throws Error naming the file and field for bad JSON, an empty or
-/// duplicate pose name, or a weight that is not a finite number.
+/// duplicate pose name, or a weight that is not a finite number. (import_ict_files.cpp)
 IctPoseRecipes readIctPoseRecipes(const std::filesystem::path& path);
+
+/// Reads ICT-FaceKit's vertex_indices.json: its `idx_to_landmark_verts`, the 68 Multi-PIE
+/// landmarks as vertex indices below kIctVertexCount. Throws Error naming the file and field.
+/// Both JSON readers enforce core/limits.h (file size, nesting, string length).
+std::vector<int> readIctLandmarkIndices(const std::filesystem::path& file);
 
 /// The ICT model cut to a region, in mm, with the dataset labels of that region.
 struct IctModel {

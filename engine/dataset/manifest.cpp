@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/limits.h"
 
 #include <nlohmann/json.hpp>
 
@@ -113,6 +114,9 @@ void validateManifest(const Manifest& m, const std::string& where)
         fail(where, ": forward: '", m.forward, "' is parallel to up '", m.up, "'");
     if (m.vertexCount <= 0)
         fail(where, ": vertex_count: ", m.vertexCount, " must be positive");
+    if (m.vertexCount > limits::kMaxMeshVertices)
+        fail(where, ": vertex_count: ", m.vertexCount, " is more than the ", limits::kMaxMeshVertices,
+            " vertices a mesh may have (docs/limits.md)");
     const int n = m.vertexCount;
 
     if (m.topology.rows() == 0)
@@ -223,6 +227,8 @@ struct Reader {
     {
         if (!value.is_number_integer())
             fail(where, ": ", field, ": expected an integer, found ", value.dump());
+        if (value.is_number_unsigned() && value.get<unsigned long long>() >= (1ull << 31))
+            fail(where, ": ", field, ": ", value.get<unsigned long long>(), " is out of range");
         const long long v = value.get<long long>();
         if (v < -(1ll << 31) || v >= (1ll << 31))
             fail(where, ": ", field, ": ", v, " is out of range");
@@ -247,13 +253,13 @@ struct Reader {
 Manifest readManifest(const std::filesystem::path& path)
 {
     const std::string where = path.string();
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        fail(where, ": cannot open");
+    const std::string text = limits::readFileLimited(path, limits::kMaxJsonFileBytes, "a manifest");
+    limits::checkJsonLimits(text, where);
     json doc;
     try {
-        doc = json::parse(in);
-    } catch (const json::parse_error& e) {
+        doc = json::parse(text);
+    } catch (const json::exception& e) {
+        // parse_error, or out_of_range for a number too large for a double (1e999).
         fail(where, ": not valid JSON: ", e.what());
     }
     const Reader r { where };

@@ -6,6 +6,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/limits.h"
 #include "io/mesh_io.h"
 
 #include <tiny_obj_loader.h>
@@ -22,6 +23,8 @@ namespace facesketch {
 
 namespace {
 
+constexpr size_t kMaxObjFaceCorners = 255;
+
 std::vector<std::string> tokens(const std::string& line)
 {
     std::istringstream in(line);
@@ -34,6 +37,7 @@ std::vector<std::string> tokens(const std::string& line)
 // Checks every `v` and `f` statement; returns the vertex count. `where(n)` is "FILE:n".
 long checkObjLines(const std::filesystem::path& path)
 {
+    limits::checkFileSize(path, limits::kMaxMeshFileBytes, "a mesh file");
     std::ifstream in(path);
     if (!in)
         fail(path.string(), ": cannot open");
@@ -58,10 +62,14 @@ long checkObjLines(const std::filesystem::path& path)
                 if (!std::isfinite(x))
                     fail(where(), "vertex coordinate ", "xyz"[c - 1], " is ", t[c]);
             }
-            ++vertices;
+            if (++vertices > limits::kMaxMeshVertices)
+                fail(where(), "more than the ", limits::kMaxMeshVertices, " vertices a mesh may have (docs/limits.md)");
         } else if (t[0] == "f") {
             if (t.size() < 4)
                 fail(where(), "face has ", t.size() - 1, " vertices, at least 3 needed: '", text, "'");
+            // tinyobjloader counts a face's corners in an unsigned char.
+            if (t.size() - 1 > kMaxObjFaceCorners)
+                fail(where(), "face has ", t.size() - 1, " vertices, at most ", kMaxObjFaceCorners, " are supported");
             std::vector<long> seen;
             for (size_t c = 1; c < t.size(); ++c) {
                 const std::string index = t[c].substr(0, t[c].find('/'));
@@ -114,7 +122,12 @@ Mesh readObj(const std::filesystem::path& path)
                     shape.mesh.indices[offset + k + 1].vertex_index });
             offset += n;
         }
+        if (offset != shape.mesh.indices.size())
+            fail(path.string(), ": tinyobjloader read ", shape.mesh.indices.size(), " face corners but counted ", offset);
     }
+    if (static_cast<std::int64_t>(triangles.size()) > limits::kMaxMeshTriangles)
+        fail(path.string(), ": ", triangles.size(), " triangles, more than the ", limits::kMaxMeshTriangles,
+            " a mesh may have (docs/limits.md)");
     mesh.F.resize(static_cast<Eigen::Index>(triangles.size()), 3);
     for (size_t t = 0; t < triangles.size(); ++t)
         mesh.F.row(static_cast<Eigen::Index>(t)) << triangles[t][0], triangles[t][1], triangles[t][2];
@@ -124,12 +137,7 @@ Mesh readObj(const std::filesystem::path& path)
 
 Vertices readObjVertices(const std::filesystem::path& path)
 {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        fail(path.string(), ": cannot open");
-    std::stringstream buffer;
-    buffer << in.rdbuf();
-    const std::string text = buffer.str();
+    const std::string text = limits::readFileLimited(path, limits::kMaxMeshFileBytes, "a mesh file");
     std::vector<double> xyz;
     long line = 0;
     size_t pos = 0;
@@ -157,6 +165,8 @@ Vertices readObjVertices(const std::filesystem::path& path)
             xyz.push_back(value);
             p = next;
         }
+        if (static_cast<std::int64_t>(xyz.size() / 3) > limits::kMaxMeshVertices)
+            fail(path.string(), ":", line, ": more than the ", limits::kMaxMeshVertices, " vertices a mesh may have (docs/limits.md)");
     }
     Vertices V(static_cast<Eigen::Index>(xyz.size() / 3), 3);
     std::copy(xyz.begin(), xyz.end(), V.data());

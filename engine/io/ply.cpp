@@ -3,6 +3,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/limits.h"
 #include "io/mesh_io.h"
 
 #include <algorithm>
@@ -135,6 +136,7 @@ private:
 Mesh readPly(const std::filesystem::path& path)
 {
     const std::string file = path.string();
+    const std::uint64_t fileBytes = limits::checkFileSize(path, limits::kMaxMeshFileBytes, "a mesh file");
     std::ifstream in(path, std::ios::binary);
     if (!in)
         fail(file, ": cannot open");
@@ -182,6 +184,9 @@ Mesh readPly(const std::filesystem::path& path)
             Element e;
             if (!(words >> e.name >> e.count) || e.count < 0)
                 fail(where(), "bad element line '", text, "'");
+            if (e.count > limits::kMaxPlyElementCount)
+                fail(where(), "element '", e.name, "' declares ", e.count, " instances, more than the ", limits::kMaxPlyElementCount,
+                    " a PLY element may have (docs/limits.md)");
             elements.push_back(e);
         } else if (keyword == "property") {
             if (elements.empty())
@@ -235,6 +240,28 @@ Mesh readPly(const std::filesystem::path& path)
     if (faceElement && indexProperty < 0)
         fail(file, ": 'face' element lacks a vertex_indices list");
 
+    if (vertexElement->count > limits::kMaxMeshVertices)
+        fail(file, ": declares ", vertexElement->count, " vertices, more than the ", limits::kMaxMeshVertices,
+            " a mesh may have (docs/limits.md)");
+    // The header's counts must fit in the bytes that follow it before anything is allocated for
+    // them: every instance takes at least one line (ASCII) or its fixed-size properties and list
+    // counts (binary). Counts are at most 2^28 and sizes at most 2^7 per instance, so nothing overflows.
+    const std::streamoff headerBytes = in.tellg();
+    const std::uint64_t bodyBytes
+        = headerBytes < 0 ? 0 : fileBytes - std::min<std::uint64_t>(fileBytes, static_cast<std::uint64_t>(headerBytes));
+    std::uint64_t neededBytes = 0;
+    for (const Element& e : elements) {
+        std::uint64_t instanceBytes = 0;
+        for (const Property& p : e.properties)
+            instanceBytes += static_cast<std::uint64_t>(scalarSize(p.isList() ? p.countType : p.type));
+        if (format == Format::Ascii)
+            instanceBytes = 1;
+        neededBytes += static_cast<std::uint64_t>(e.count) * instanceBytes;
+    }
+    if (neededBytes > bodyBytes + (format == Format::Ascii ? 1 : 0))
+        fail(file, ": the header declares elements that need at least ", neededBytes, " bytes, but only ", bodyBytes,
+            " follow it (truncated, or a hostile header)");
+
     Mesh mesh;
     mesh.V.resize(vertexElement->count, 3);
     std::vector<std::array<std::int32_t, 3>> triangles;
@@ -249,6 +276,9 @@ Mesh readPly(const std::filesystem::path& path)
     for (const Element& e : elements) {
         const bool isVertex = &e == vertexElement, isFace = &e == faceElement;
         scalars.assign(e.properties.size(), 0.0);
+        // A binary element without properties takes no bytes: nothing to read, however many.
+        if (format != Format::Ascii && e.properties.empty())
+            continue;
         for (long k = 0; k < e.count; ++k) {
             indices.clear();
             if (format == Format::Ascii) {
@@ -278,12 +308,16 @@ Mesh readPly(const std::filesystem::path& path)
                     continue;
                 }
                 const double n = readValue(p.countType, p.name, true);
-                if (n < 0 || n != std::floor(n) || n > 1e6)
-                    fail(where(), e.name, " ", k, ": list length ", n, " is invalid");
+                if (!(n >= 0) || n != std::floor(n) || n > static_cast<double>(limits::kMaxPolygonCorners))
+                    fail(where(), e.name, " ", k, ": list length ", n, " is invalid (at most ", limits::kMaxPolygonCorners, ")");
                 for (long j = 0; j < static_cast<long>(n); ++j) {
                     const double value = readValue(p.type, p.name, false);
-                    if (isFace && static_cast<int>(i) == indexProperty)
+                    if (isFace && static_cast<int>(i) == indexProperty) {
+                        // Range-checked as a double: converting 1e30 to an integer is undefined.
+                        if (!(value >= 0 && value < static_cast<double>(vertexCount)) || value != std::floor(value))
+                            fail(where(), "face ", k, " has vertex index ", value, " outside [0, ", vertexCount, ")");
                         indices.push_back(static_cast<long>(value));
+                    }
                 }
             }
             if (isVertex) {
@@ -299,6 +333,8 @@ Mesh readPly(const std::filesystem::path& path)
                 for (const long index : indices)
                     if (index < 0 || index >= vertexCount)
                         fail(where(), "face ", k, " has vertex index ", index, " outside [0, ", vertexCount, ")");
+                if (static_cast<std::int64_t>(triangles.size() + indices.size() - 2) > limits::kMaxMeshTriangles)
+                    fail(where(), "face ", k, ": more than the ", limits::kMaxMeshTriangles, " triangles a mesh may have (docs/limits.md)");
                 for (size_t j = 1; j + 1 < indices.size(); ++j)
                     triangles.push_back({ static_cast<std::int32_t>(indices[0]), static_cast<std::int32_t>(indices[j]),
                         static_cast<std::int32_t>(indices[j + 1]) });

@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/limits.h"
 
 #include <algorithm>
 #include <cmath>
@@ -206,6 +207,7 @@ const std::vector<std::string>& sessionMapperNames()
 
 Session parseSession(const std::string& text, const std::string& where)
 {
+    limits::checkJsonLimits(text, where);
     json doc;
     try {
         doc = json::parse(text);
@@ -306,14 +308,7 @@ Session parseSession(const std::string& text, const std::string& where)
 
 Session loadSession(const std::filesystem::path& path)
 {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        fail(path.string(), ": cannot open the session file");
-    std::stringstream text;
-    text << in.rdbuf();
-    if (in.bad())
-        fail(path.string(), ": read error");
-    return parseSession(text.str(), path.string());
+    return parseSession(limits::readFileLimited(path, limits::kMaxJsonFileBytes, "a session file"), path.string());
 }
 
 std::filesystem::path sessionPath(const std::filesystem::path& sessionFile, const std::filesystem::path& path)

@@ -151,7 +151,12 @@ void deriveFaceModel(FaceModel& model)
     model.joint = composeCorrelation(model);
     for (SegmentModel& sm : model.segments) {
         const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(sm.cleanUp.W);
-        sm.cleanUpBasis = qr.householderQ() * Eigen::MatrixXd::Identity(sm.cleanUp.dim(), qr.rank());
+        // A W of rank 0 (no columns, or all zero, as a model file may hold) spans nothing; Eigen
+        // would apply the reflections to an empty matrix through a null pointer.
+        if (qr.rank() == 0)
+            sm.cleanUpBasis.resize(sm.cleanUp.dim(), 0);
+        else
+            sm.cleanUpBasis = qr.householderQ() * Eigen::MatrixXd::Identity(sm.cleanUp.dim(), qr.rank());
     }
 }
 

@@ -1,6 +1,7 @@
 #include "stats/model_file.h"
 
 #include "core/error.h"
+#include "core/limits.h"
 #include "stats/model_io.h"
 
 #include <array>
@@ -81,7 +82,7 @@ FaceModel loadFaceModel(const std::filesystem::path& path)
     HeadLayout& layout = model.head;
     const auto headVertices = r.scalar<std::int64_t>("the head vertex count");
     const auto skinBegin = r.scalar<std::int64_t>("the skin offset");
-    if (headVertices < 0 || headVertices > std::numeric_limits<int>::max() || skinBegin < 0 || skinBegin > headVertices)
+    if (headVertices < 0 || headVertices > limits::kMaxMeshVertices || skinBegin < 0 || skinBegin > headVertices)
         fail(path.string(), ": head of ", headVertices, " vertices with the skin from ", skinBegin);
     layout.vertexCount = static_cast<int>(headVertices);
     layout.skinBegin = static_cast<int>(skinBegin);
@@ -116,11 +117,16 @@ FaceModel loadFaceModel(const std::filesystem::path& path)
         inconsistent("mean face of ", model.meanFace.size(), " values, ", model.segmentation.core.size(), " segment labels");
     if (model.triangles.size() > 0 && (model.triangles.minCoeff() < 0 || model.triangles.maxCoeff() >= vertices))
         inconsistent("a triangle index outside [0, ", vertices, ")");
+    if (model.segmentation.core.size() > 0
+        && (model.segmentation.core.minCoeff() < 0 || static_cast<std::uint64_t>(model.segmentation.core.maxCoeff()) >= groups))
+        inconsistent("a segment label outside [0, ", groups, ")");
     Eigen::Index latents = 0;
     for (std::uint64_t s = 0; s < segments; ++s) {
         const auto& members = model.segmentation.vertices[s];
         const SegmentModel& sm = model.segments[s];
         const auto d = 3 * static_cast<Eigen::Index>(members.size());
+        if (members.empty())
+            inconsistent("segment ", s, " has no vertices");
         for (int v : members)
             if (v < 0 || v >= vertices)
                 inconsistent("segment ", s, " holds vertex ", v, " outside [0, ", vertices, ")");
@@ -134,6 +140,13 @@ FaceModel loadFaceModel(const std::filesystem::path& path)
     for (const Ppca& p : model.correlation.components)
         if (p.dim() != latents)
             inconsistent("the correlation mixture has dimension ", p.dim(), ", expected ", latents);
+    // Every head vertex is skin or in one rigid part: check the count before validateHeadLayout
+    // allocates per head vertex.
+    Eigen::Index partVertices = 0;
+    for (const RigidPart& part : layout.parts)
+        partVertices += static_cast<Eigen::Index>(part.vertices.size());
+    if (layout.vertexCount > vertices + partVertices)
+        inconsistent("a head of ", layout.vertexCount, " vertices from ", vertices, " skin and ", partVertices, " rigid-part vertices");
     if (layout.vertexCount > 0)
         validateHeadLayout(layout, vertices, path.string() + ": inconsistent model");
     else if (!layout.parts.empty() || layout.topology.size() > 0)

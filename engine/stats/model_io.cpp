@@ -3,6 +3,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/hash.h"
+#include "core/limits.h"
 
 #include <bit>
 #include <fstream>
@@ -54,8 +55,10 @@ void PayloadReader::need(size_t size, const char* what) const
 
 void PayloadReader::checkSize(std::uint64_t rows, std::uint64_t cols, size_t scalarSize, const char* what) const
 {
-    // Checked by division so a corrupt size cannot overflow the product.
-    if (cols != 0 && rows > (end_ - at_) / scalarSize / cols)
+    // Checked by division so a corrupt size cannot overflow the product; each side on its own
+    // too, as a matrix with no columns may claim any number of rows (found by fuzzing).
+    constexpr std::uint64_t kMaxSide = std::uint64_t(1) << 32;
+    if (rows > kMaxSide || cols > kMaxSide || (cols != 0 && rows > (end_ - at_) / scalarSize / cols))
         fail(path_.string(), ": ", what, " claims ", rows, " by ", cols, " values at byte ", at_, ", more than the file holds");
 }
 
@@ -73,7 +76,8 @@ Ppca PayloadReader::ppca(const char* what)
     p.mean = vector(what);
     p.W = matrix<double>(what);
     p.sigma2 = scalar<double>(what);
-    if (p.W.rows() != p.mean.size() || !(p.sigma2 > 0.0))
+    // q <= d keeps everything derived from W (the q by q W^T W) within the file's size.
+    if (p.W.rows() != p.mean.size() || p.W.cols() > p.W.rows() || !(p.sigma2 > 0.0))
         fail(path_.string(), ": ", what, " is inconsistent (", p.mean.size(), " means, W ", p.W.rows(), " by ", p.W.cols(), ", sigma^2 ",
             p.sigma2, ")");
     return p;
@@ -123,10 +127,9 @@ void writeModelContainer(
 std::string readModelContainer(const std::filesystem::path& path, const std::array<char, 8>& magic, std::uint32_t version,
     const std::string& kind, const std::string& remedy)
 {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
+    if (!std::filesystem::is_regular_file(path))
         fail(path.string(), ": cannot open the ", kind, " file");
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string bytes = limits::readFileLimited(path, limits::kMaxModelFileBytes, ("a " + kind + " file").c_str());
     const size_t header = magic.size() + sizeof(std::uint32_t) + sizeof(std::uint64_t);
     if (bytes.size() < magic.size() || std::memcmp(bytes.data(), magic.data(), magic.size()) != 0)
         fail(path.string(), ": not a FaceSketch ", kind, " (no ", std::string(magic.data()), " header)");

@@ -103,3 +103,33 @@ TEST_CASE("dataset: missing files and meshes that do not match the topology are 
     writePly(dir / "set" / "s0.ply", small);
     REQUIRE_THROWS_WITH(loadMesh(d, "s0.ply"), Catch::Contains("has 3 vertices, the manifest's topology has 4"));
 }
+
+TEST_CASE("dataset: a sample file that is a symbolic link out of the folder is refused and never read")
+{
+    test::TempDir dir;
+    const Manifest m = square(2);
+    writeDataset(dir / "set", m, [&](const fs::path& tmp) {
+        writePly(tmp / "s0.ply", squareMesh(m, 1));
+        writePly(tmp / "s1.ply", squareMesh(m, 2));
+    });
+    REQUIRE_NOTHROW(openDataset(dir / "set"));
+    // A link to a mesh outside: refused although the mesh is valid.
+    writePly(dir / "outside.ply", squareMesh(m, 3));
+    fs::remove(dir / "set" / "s1.ply");
+    fs::create_symlink(dir / "outside.ply", dir / "set" / "s1.ply");
+    REQUIRE_THROWS_WITH(openDataset(dir / "set"), Catch::Contains("samples[1].file: 's1.ply' leads outside the dataset folder"));
+    // So is a linked folder on the way; a link that stays inside is fine.
+    fs::remove(dir / "set" / "s1.ply");
+    fs::create_directory(dir / "elsewhere");
+    writePly(dir / "elsewhere" / "s1.ply", squareMesh(m, 2));
+    Manifest nested = m;
+    nested.samples[1].file = "sub/s1.ply";
+    writeManifest(dir / "set" / "manifest.json", nested);
+    fs::create_directory_symlink(dir / "elsewhere", dir / "set" / "sub");
+    REQUIRE_THROWS_WITH(openDataset(dir / "set"), Catch::Contains("'sub/s1.ply' leads outside the dataset folder"));
+    fs::remove(dir / "set" / "sub");
+    fs::create_directory(dir / "set" / "real");
+    writePly(dir / "set" / "real" / "s1.ply", squareMesh(m, 2));
+    fs::create_directory_symlink("real", dir / "set" / "sub");
+    REQUIRE(openDataset(dir / "set").manifest.samples[1].file == "sub/s1.ply");
+}

@@ -121,3 +121,18 @@ TEST_CASE("obj: readObjVertices names the file, line and coordinate of a bad v l
     REQUIRE_THROWS_WITH(readObjVertices(dir / "inf.obj"), Catch::Contains("inf.obj:2: vertex coordinate x is nan"));
     REQUIRE_THROWS_WITH(readObjVertices(dir / "none.obj"), Catch::Contains("none.obj: cannot open"));
 }
+
+TEST_CASE("obj: a polygon of more than 255 corners is refused (tinyobjloader counts them in a byte)")
+{
+    test::TempDir dir;
+    std::string text, face = "f";
+    for (int i = 1; i <= 256; ++i) {
+        text += cat("v ", i, " ", i % 7, " 0\n");
+        face += cat(" ", i);
+    }
+    test::writeText(dir / "big.obj", text + face + "\n");
+    REQUIRE_THROWS_WITH(readObj(dir / "big.obj"), Catch::Contains("big.obj:257: face has 256 vertices, at most 255 are supported"));
+    // 255 corners read as a fan of 253 triangles.
+    test::writeText(dir / "ok.obj", text + face.substr(0, face.rfind(' ')) + "\n");
+    REQUIRE(readObj(dir / "ok.obj").triangleCount() == 253);
+}

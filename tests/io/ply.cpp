@@ -149,3 +149,46 @@ TEST_CASE("ply: malformed binary files name the file and element")
     test::writeText(dir / "nan.ply", nan);
     REQUIRE_THROWS_WITH(readPly(dir / "nan.ply"), Catch::Contains("nan.ply: vertex 5 has non-finite y"));
 }
+
+TEST_CASE("ply: hostile headers are refused before anything of their size is allocated")
+{
+    test::TempDir dir;
+    const auto refused = [&](const std::string& bytes, const std::string& expected) {
+        test::writeText(dir / "hostile.ply", bytes);
+        REQUIRE_THROWS_WITH(readPly(dir / "hostile.ply"), Catch::Contains("hostile.ply") && Catch::Contains(expected));
+    };
+    const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
+    // 4 billion vertices (48 GB as doubles) announced by a 100-byte file.
+    refused("ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\n" + xyz + "end_header\n",
+        ":3: element 'vertex' declares 4000000000 instances, more than the 268435456");
+    // A count whose product with the instance size would overflow 64 bits.
+    refused("ply\nformat binary_little_endian 1.0\nelement vertex 4611686018427387904\n" + xyz + "end_header\n", "more than the 268435456");
+    // Within the element limit but above the vertex limit.
+    refused("ply\nformat ascii 1.0\nelement vertex 100000000\n" + xyz + "end_header\n",
+        "declares 100000000 vertices, more than the 67108864 a mesh may have");
+    // Within every limit, but more than the bytes that follow can hold.
+    refused("ply\nformat binary_little_endian 1.0\nelement vertex 60000000\n" + xyz + "end_header\n" + std::string(12, '\0'),
+        "need at least 720000000 bytes, but only 12 follow it");
+    refused("ply\nformat ascii 1.0\nelement vertex 3\n" + xyz
+            + "element face 50000000\nproperty list uchar int vertex_indices\nend_header\n"
+              "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+        "need at least 50000003 bytes, but only 26 follow it");
+    // A polygon longer than the limit, and a face index past the vertex count as a huge float
+    // (converting it to an integer unchecked would be undefined behaviour).
+    refused("ply\nformat ascii 1.0\nelement vertex 3\n" + xyz
+            + "element face 1\nproperty list int int vertex_indices\nend_header\n"
+              "0 0 0\n1 0 0\n0 1 0\n70000 0 1 2\n",
+        "face 0: list length 70000 is invalid (at most 65536)");
+    std::string floatIndex = "ply\nformat binary_little_endian 1.0\nelement vertex 3\n" + xyz
+        + "element face 1\nproperty list uchar float vertex_indices\nend_header\n";
+    const float corners[12] = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1, 1e30f };
+    floatIndex.append(reinterpret_cast<const char*>(corners), 36);
+    floatIndex += '\3';
+    floatIndex.append(reinterpret_cast<const char*>(corners + 9), 12);
+    refused(floatIndex, "face 0 has vertex index 1.00000002e+30 outside [0, 3)");
+    // Billions of instances of an element without properties cost no time.
+    test::writeText(dir / "empty-elements.ply",
+        "ply\nformat binary_little_endian 1.0\nelement vertex 3\n" + xyz + "element nothing 268435456\nend_header\n"
+            + std::string(reinterpret_cast<const char*>(corners), 36));
+    REQUIRE(readPly(dir / "empty-elements.ply").vertexCount() == 3);
+}

@@ -2,10 +2,12 @@
 #include "stats/model_file.h"
 
 #include "core/error.h"
+#include "core/hash.h"
 #include "core/random.h"
 #include "test_common.h"
 
 #include <catch2/catch.hpp>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 
@@ -188,4 +190,69 @@ TEST_CASE("model_file: the model file keeps the head layout, and version 1 files
     bytes[8] = 1; // the version written before the head layout existed
     writeBytes(dir / "v1.model", bytes);
     REQUIRE_THROWS_WITH(loadFaceModel(dir / "v1.model"), Catch::Contains("version 1") && Catch::Contains("retrain"));
+}
+
+namespace {
+
+// A model file around `payload` with a valid header and checksum, so that only the payload's
+// contents can be wrong.
+std::string modelFileAround(const std::string& payload)
+{
+    std::string bytes("FSKFACE\0", 8);
+    const std::uint32_t version = kFaceModelVersion;
+    const std::uint64_t length = payload.size(), hash = fnv1a(payload.data(), payload.size());
+    bytes.append(reinterpret_cast<const char*>(&version), 4);
+    bytes.append(reinterpret_cast<const char*>(&length), 8);
+    bytes += payload;
+    bytes.append(reinterpret_cast<const char*>(&hash), 8);
+    return bytes;
+}
+
+std::string matrixHeader(std::uint64_t rows, std::uint64_t cols)
+{
+    std::string bytes(16, '\0');
+    std::memcpy(bytes.data(), &rows, 8);
+    std::memcpy(bytes.data() + 8, &cols, 8);
+    return bytes;
+}
+
+} // namespace
+
+TEST_CASE("model_file: hostile sizes are refused before anything of their size is allocated")
+{
+    test::TempDir dir;
+    const auto loadError = [&](const std::string& bytes) {
+        writeBytes(dir / "hostile.model", bytes);
+        try {
+            (void)loadFaceModel(dir / "hostile.model");
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    using Catch::Contains;
+    // 4 billion triangles announced by a 60-byte file.
+    REQUIRE_THAT(loadError(modelFileAround(matrixHeader(4000000000u, 3) + std::string(24, '\0'))),
+        Contains("the triangles claims 4000000000 by 3 values at byte 16, more than the file holds"));
+    // Sizes whose product overflows 64 bits (2^62 * 2^62 * 4 wraps to 0), and a matrix without
+    // columns claiming 2^63 rows (Eigen's index is signed).
+    REQUIRE_THAT(loadError(modelFileAround(matrixHeader(std::uint64_t(1) << 62, std::uint64_t(1) << 62))),
+        Contains("claims 4611686018427387904 by 4611686018427387904 values"));
+    REQUIRE_THAT(loadError(modelFileAround(matrixHeader(std::uint64_t(1) << 63, 0))), Contains("claims 9223372036854775808 by 0 values"));
+
+    // A factor wider than tall: W^T W would be q by q for a q the file does not pay for.
+    FaceModel wide = randomModel();
+    wide.segments[0].cleanUp.W = Eigen::MatrixXd::Ones(wide.segments[0].cleanUp.dim(), wide.segments[0].cleanUp.dim() + 1);
+    saveFaceModel(wide, dir / "wide.model");
+    REQUIRE_THROWS_WITH(loadFaceModel(dir / "wide.model"), Contains("a segment clean-up model is inconsistent"));
+
+    // A head far larger than its skin and rigid parts, which validation would allocate for.
+    FaceModel head = randomModel();
+    head.head.vertexCount = 100000000;
+    saveFaceModel(head, dir / "head.model");
+    REQUIRE_THROWS_WITH(loadFaceModel(dir / "head.model"), Contains("head of 100000000 vertices with the skin from 0"));
+    head.head.vertexCount = 1000;
+    saveFaceModel(head, dir / "head.model");
+    REQUIRE_THROWS_WITH(
+        loadFaceModel(dir / "head.model"), Contains("inconsistent model: a head of 1000 vertices from 81 skin and 0 rigid-part"));
 }

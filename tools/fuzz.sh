@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (tests/fuzz/, FACESKETCH_FUZZ=ON, clang-14, ASan + UBSan) in
+# build-fuzz/ and runs them one after another, each for SECONDS (default 30).
+#   tools/fuzz.sh                    every target, 30 s each
+#   tools/fuzz.sh ply 600            one target for 10 minutes
+#   FUZZ_RUNS=1000000 tools/fuzz.sh model 1800   stop after a million executions (or 30 min)
+#   FUZZ_JOBS=2 ...                  compile with 2 jobs (default: all cores)
+# The working corpus grows in build-fuzz/corpus/<target> (seeded from tests/fuzz/<target>/);
+# a crash, leak, timeout (10 s) or allocation over 1 GB stops the run and leaves its input in
+# build-fuzz/crashes/<target>/, and the script fails. Keep each fixed crash's input as
+# tests/fuzz/<target>/regress-<what>, which the test suite replays (tests/fuzz/replay.cpp).
+# The last line per target is `fuzz TARGET: N runs, cov C, ft F` (libFuzzer's counters).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+targets=(obj obj_vertices ply manifest ict_json model curvature_cache png session)
+what=${1:-all}
+seconds=${2:-30}
+[ "$what" = all ] || targets=("$what")
+
+cmake -S . -B build-fuzz -DFACESKETCH_FUZZ=ON -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_C_COMPILER=clang-14 \
+      -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DFACESKETCH_WERROR=ON >/dev/null
+cmake --build build-fuzz -j"${FUZZ_JOBS:-$(nproc)}" --target "${targets[@]/#/fuzz_}" >/dev/null
+
+# Scratch files on tmpfs: every execution writes its input to a file, as the readers take paths.
+[ -d /dev/shm ] && export TMPDIR=/dev/shm
+export ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=0"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+status=0
+for t in "${targets[@]}"; do
+  corpus=build-fuzz/corpus/$t
+  crashes=build-fuzz/crashes/$t
+  mkdir -p "$corpus" "$crashes"
+  log=build-fuzz/fuzz-$t.log
+  runs=()
+  [ -n "${FUZZ_RUNS:-}" ] && runs=(-runs="$FUZZ_RUNS")
+  if nice -n 10 "build-fuzz/tests/fuzz/fuzz_$t" "$corpus" "tests/fuzz/$t" -max_total_time="$seconds" "${runs[@]}" \
+       -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=1024 -max_len=16384 -print_final_stats=1 \
+       -artifact_prefix="$crashes/" >"$log" 2>&1; then
+    result=ok
+  else
+    result="FAILED (see $log and $crashes/)"
+    status=1
+  fi
+  # The last status line ("#N DONE cov: C ft: F ..." or the last "#N ... cov:" before a crash).
+  line=$(grep -E '^#[0-9]+' "$log" | tail -1 || true)
+  runs_done=$(sed -nE 's/^stat::number_of_executed_units: *([0-9]+)/\1/p' "$log" | tail -1)
+  echo "fuzz $t: ${runs_done:-${line%% *}} runs, cov $(sed -nE 's/.*cov: ([0-9]+).*/\1/p' <<<"$line"), ft $(sed -nE 's/.*ft: ([0-9]+).*/\1/p' <<<"$line"), $result"
+done
+exit $status
