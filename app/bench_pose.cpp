@@ -3,6 +3,7 @@
 // mapping (pose/timeline.h TimelinePlayer). Goal on lavapipe's machine: under 16 ms at 6,000
 // vertices (60 fps). The pose model is trained on a small posed synthetic set per resolution.
 #include "bench.h"
+#include "bench_pose_strokes.h"
 
 #include "core/stopwatch.h"
 #include "dataset/synth/synth_dataset.h"
@@ -69,6 +70,11 @@ void benchPose(const BenchOptions& options, std::ostream& out)
             ms.push_back(c.milliseconds());
         }
         out << "pose_frame_ms_" << V << "v " << median(ms) << " ms\n";
+        // Pose strokes to posed face: the test identity's open smile traced from the front.
+        Mesh posed = face;
+        posed.V = asVertices(Eigen::VectorXd(
+            test.neutrals.row(0).transpose() + test.meshDisplacements.row(test.row(0, test.poseIndex("smile_open"))).transpose()));
+        benchPoseStrokes(model, face, posed, ds.manifest.contours, options.repeat, out);
         fs::remove_all(folder);
     }
     fs::remove_all(dir);

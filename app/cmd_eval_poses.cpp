@@ -7,6 +7,7 @@
 #include "evaluation/pose_eval.h"
 #include "pose/minimal_poses.h"
 #include "pose/pose_file.h"
+#include "pose/stroke_eval.h"
 
 #include <iomanip>
 #include <iostream>
@@ -26,10 +27,16 @@ void runEvalPoses(const EvalPosesCommand& c)
     const dataset::Dataset ds = dataset::openDataset(c.dataset);
     const std::vector<pose::MinimalPose> minimal = c.minimal.empty() ? pose::loadMinimalPoses() : pose::readMinimalPoses(c.minimal);
     const pose::PoseSet test = pose::loadPoseSet(ds, { dataset::Role::Test });
-    const evaluation::PoseEvaluation e = evaluation::evaluatePoses(m, test, minimal);
+    evaluation::PoseEvaluation e = evaluation::evaluatePoses(m, test, minimal);
+    // (c) from simulated pose strokes (front view, lip and brow contours): the whole chain a
+    // user drives, strokes -> FPs (5.3) -> completion (5.4) -> mapping (5.4.1).
+    const pose::StrokePoseEvaluation strokes = pose::evaluateStrokePoses(m, test, ds.manifest.contours);
+    e.results.push_back(strokes.record);
+    e.perPose.insert(e.perPose.end(), strokes.perPose.begin(), strokes.perPose.end());
 
     std::cout << "# " << e.identities << " test identities of " << c.dataset << ", " << m.vertexCount
               << " vertices; mean per-vertex error\n";
+    std::cout << "# strokes: " << strokes.strokes << " simulated, " << strokes.refused << " refused by the reader\n";
     std::cout << std::fixed << std::setprecision(3) << std::left << std::setw(12) << "task" << std::setw(13) << "method" << std::right
               << std::setw(7) << "poses" << std::setw(10) << "mean mm" << std::setw(9) << "ratio\n";
     for (const evaluation::PoseEvalRecord& r : e.results)

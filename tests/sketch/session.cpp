@@ -351,11 +351,12 @@ TEST_CASE("session: bad pose actions are named by their JSON path, and nothing i
     bad.poseActions[3].stroke.points.clear();
     REQUIRE_THROWS_WITH(saveSession(dir / "s.json", bad), Catch::Contains("actions[6].stroke.points: a stroke needs at least one point"));
     REQUIRE(fileText(dir / "s.json") == before);
+}
 
-    TEST_CASE("session: a deeply nested or 10 MB-string document is refused before parsing, naming the byte")
-    {
-        REQUIRE_THROWS_WITH(parseSession("{\"actions\": " + std::string(1000000, '['), "s.json"),
-            Catch::Contains("s.json: byte 75: arrays and objects nested more than 64 deep"));
-        REQUIRE_THROWS_WITH(parseSession("{\"model\": \"" + std::string(10 << 20, 'm') + "\"}", "s.json"),
-            Catch::Contains("s.json: byte 10: a string longer than 65536 bytes"));
-    }
+TEST_CASE("session: a deeply nested or 10 MB-string document is refused before parsing, naming the byte")
+{
+    REQUIRE_THROWS_WITH(parseSession("{\"actions\": " + std::string(1000000, '['), "s.json"),
+        Catch::Contains("s.json: byte 75: arrays and objects nested more than 64 deep"));
+    REQUIRE_THROWS_WITH(parseSession("{\"model\": \"" + std::string(10 << 20, 'm') + "\"}", "s.json"),
+        Catch::Contains("s.json: byte 10: a string longer than 65536 bytes"));
+}
