@@ -42,7 +42,8 @@ Timeline::Timeline(std::vector<Keyframe> keyframes, double tension)
 
 void Timeline::sample(double t, Eigen::VectorXd& out) const
 {
-    if (!(t >= begin() && t <= end()))
+    // isnan first: an ordered comparison with NaN raises the invalid flag (trapped in tests).
+    if (std::isnan(t) || t < begin() || t > end())
         fail("timeline: time ", t, " outside the timeline [", begin(), ", ", end(), "]");
     // The segment [t_k, t_k+1] holding t; t = end() falls in the last one.
     const auto it = std::upper_bound(keyframes_.begin(), keyframes_.end(), t, [](double x, const Keyframe& key) { return x < key.time; });

@@ -88,7 +88,7 @@ private:
     const std::string& bytes_;
     size_t at_;
     size_t end_;
-    const std::filesystem::path& path_;
+    std::filesystem::path path_; // a copy: readers are made with temporaries too
 };
 
 /// Writes magic, version, length, payload and hash to path atomically. Throws Error naming path.
