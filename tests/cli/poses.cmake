@@ -5,23 +5,7 @@
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 
-function(run)
-  execute_process(COMMAND ${FACESKETCH} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "facesketch ${ARGN} failed (${rc}): ${out} ${err}")
-  endif()
-  set(out "${out}" PARENT_SCOPE)
-endfunction()
-
-function(expect_failure pattern)
-  execute_process(COMMAND ${FACESKETCH} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 1)
-    message(FATAL_ERROR "facesketch ${ARGN}: expected exit code 1, got ${rc}: ${out} ${err}")
-  endif()
-  if(NOT err MATCHES "${pattern}")
-    message(FATAL_ERROR "facesketch ${ARGN}: expected a message matching '${pattern}', got: ${err}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/common.cmake)
 
 # 14 identities with poses: 10 train, 3 contour, 1 test.
 run(synth -o ${WORK}/posed --identities 14 --poses --seed 4)
