@@ -30,7 +30,7 @@ void writePng(const std::filesystem::path& path, const Image& image)
 
 Image readPng(const std::filesystem::path& path)
 {
-    const std::string bytes = limits::readFileLimited(path, limits::kMaxImageFileBytes, "a PNG file");
+    std::string bytes = limits::readFileLimited(path, limits::kMaxImageFileBytes, "a PNG file");
     // stb_image allocates what a chunk's length field claims before reading it (2 GB for a
     // 100-byte file): check every chunk against the bytes that are there first.
     const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
@@ -40,6 +40,13 @@ Image readPng(const std::filesystem::path& path)
             fail(path.string(), ": PNG chunk at byte ", at, " claims ", length, " bytes, more than the file holds (truncated or corrupt)");
         if (bytes.compare(at + 4, 4, "IEND") == 0)
             break; // stb reads nothing after it
+        // An empty IDAT is legal but adds nothing; stb copies it with memcpy from a null buffer
+        // when it comes first (undefined behaviour), so it is dropped here.
+        if (length == 0 && bytes.compare(at + 4, 4, "IDAT") == 0) {
+            bytes.erase(at, 12);
+            data = reinterpret_cast<const unsigned char*>(bytes.data());
+            continue;
+        }
         at += length + 12;
     }
     int w = 0, h = 0, channels = 0;
