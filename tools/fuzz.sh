@@ -5,6 +5,8 @@
 #   tools/fuzz.sh ply 600            one target for 10 minutes
 #   FUZZ_RUNS=1000000 tools/fuzz.sh model 1800   stop after a million executions (or 30 min)
 #   FUZZ_JOBS=2 ...                  compile with 2 jobs (default: all cores)
+#   FUZZ_SEED=1 ...                  libFuzzer's random seed (default: a new one per run); CI fixes
+#                                    it so that a red run is reproducible and a green one stays green
 # The working corpus grows in build-fuzz/corpus/<target> (seeded from tests/fuzz/<target>/);
 # a crash, leak, timeout (10 s) or allocation over 1 GB stops the run and leaves its input in
 # build-fuzz/crashes/<target>/, and the script fails. Keep each fixed crash's input as
@@ -34,6 +36,7 @@ for t in "${targets[@]}"; do
   log=build-fuzz/fuzz-$t.log
   runs=()
   [ -n "${FUZZ_RUNS:-}" ] && runs=(-runs="$FUZZ_RUNS")
+  [ -n "${FUZZ_SEED:-}" ] && runs+=(-seed="$FUZZ_SEED")
   if nice -n 10 "build-fuzz/tests/fuzz/fuzz_$t" "$corpus" "tests/fuzz/$t" -max_total_time="$seconds" "${runs[@]}" \
        -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=1024 -max_len=16384 -print_final_stats=1 \
        -artifact_prefix="$crashes/" >"$log" 2>&1; then

@@ -9,6 +9,7 @@ mode=release
 [ "${1:-}" = "--sanitize" ] && mode=sanitize
 
 bash tools/setup-debian.sh
+echo "test.sh: setup took $SECONDS s"
 # The house format (.clang-format) holds for every C++ file in the repository.
 git ls-files -z '*.cpp' '*.h' | xargs -0 clang-format --dry-run -Werror
 jobs=$(nproc)
@@ -30,7 +31,9 @@ else
   cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 $lines -DNDEBUG" \
         -DFACESKETCH_WERROR=ON
 fi
+built=$SECONDS
 cmake --build "$dir" -j"$jobs"
+echo "test.sh: the $mode build took $((SECONDS - built)) s"
 # Under a virtual X display (xvfb-run -a picks a free one): the swapchain and window tests open
 # real windows and present to them (tests/test_window.h); without DISPLAY they skip with a warning.
 xvfb-run -a ctest --test-dir "$dir" --output-on-failure -j"$jobs"
