@@ -164,6 +164,10 @@ void addRegisterCommand(CLI::App& root)
     cmd->add_option("--max-displacement", c->options.maxDisplacement, "Scan depths farther (mm) from the approximation are ignored")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
+    cmd->add_option("--grazing", c->options.grazingCosine,
+           "Vertices whose surface meets the axis' ray at a cosine below this are re-placed from their neighbours and snapped (0: off)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 0.99));
     cmd->add_option(
            "--max-point-distance", c->options.limits.maxDistanceFromSurface, "Largest distance (mm) of a feature point from the scan")
         ->capture_default_str()
@@ -195,6 +199,10 @@ void addImportScansCommand(CLI::App& import)
     sub->add_option("--map-size", o->o.registration.mapWidth, "Depth map width and height in pixels")
         ->capture_default_str()
         ->check(CLI::Range(8, 8192));
+    sub->add_option("--grazing", o->o.registration.grazingCosine,
+           "Vertices whose surface meets the axis' ray at a cosine below this are re-placed from their neighbours and snapped (0: off)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 0.99));
     sub->add_flag("-q,--quiet", o->quiet, "No progress bar");
     sub->callback([o] {
         o->o.registration.mapHeight = o->o.registration.mapWidth;

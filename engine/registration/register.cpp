@@ -1,6 +1,7 @@
 #include "registration/register.h"
 
 #include "core/error.h"
+#include "geometry/normals.h"
 #include "registration/rbf.h"
 #include "registration/surface_query.h"
 
@@ -72,6 +73,24 @@ Eigen::Vector2d earAngles(const Registration& out, const RegistrationOptions& op
     return ears;
 }
 
+// Why a vertex is re-placed after the route (register.h, grazing vertices).
+enum Grazing : char { Reliable = 0, SnapToScan = 1, FollowOnly = 2 };
+
+// The cosine between the ray from the axis and the normal of an unwrapped triangle (rows of
+// (theta, h, r)): the triangle's depth as a plane over arc length (theta times the mean depth)
+// and height has gradient g, and the cosine is 1 / sqrt(1 + g^2). 0 for a degenerate triangle.
+double rayCosine(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c)
+{
+    const double arc = (a(2) + b(2) + c(2)) / 3.0;
+    const Eigen::Vector2d e1((b(0) - a(0)) * arc, b(1) - a(1)), e2((c(0) - a(0)) * arc, c(1) - a(1));
+    const double det = e1.x() * e2.y() - e1.y() * e2.x();
+    if (!(std::abs(det) > 1e-12))
+        return 0.0;
+    const double d1 = b(2) - a(2), d2 = c(2) - a(2);
+    const Eigen::Vector2d gradient((d1 * e2.y() - d2 * e1.y()) / det, (e1.x() * d2 - e2.x() * d1) / det);
+    return 1.0 / std::sqrt(1.0 + gradient.squaredNorm());
+}
+
 double readThesis(const std::vector<double>& field, int width, int height, const Eigen::Vector2d& pixel, double smoothing)
 {
     const int cx = std::clamp(static_cast<int>(std::floor(pixel.x())), 0, width - 1);
@@ -87,7 +106,7 @@ double readThesis(const std::vector<double>& field, int width, int height, const
 
 // `unwrapped` holds the registered vertices only, from template vertex `first` on.
 void registerByDepthMaps(const Mesh& scan, const Vertices& scanUnwrapped, const Triangles& templF, const Vertices& unwrapped, int first,
-    const RegistrationOptions& options, Registration& out)
+    const RegistrationOptions& options, Registration& out, std::vector<char>& grazing)
 {
     out.grid = gridAround(unwrapped, options.mapWidth, options.mapHeight);
     const DepthMap approx = rasterizeDepth(unwrapped, templF, out.grid);
@@ -119,6 +138,11 @@ void registerByDepthMaps(const Mesh& scan, const Vertices& scanUnwrapped, const 
         out.source[static_cast<std::size_t>(first + v)] = label;
         if (label == VertexSource::Approximation)
             continue; // out.registered already holds the approximation
+        if (target.triangle[p] >= 0 && (label == VertexSource::Scan || label == VertexSource::Occluded)) {
+            const auto corner = [&](int k) { return Eigen::Vector3d(scanUnwrapped.row(scan.F(target.triangle[p], k)).transpose()); };
+            if (rayCosine(corner(0), corner(1), corner(2)) < options.grazingCosine)
+                grazing[static_cast<std::size_t>(v)] = label == VertexSource::Scan ? SnapToScan : FollowOnly;
+        }
         double r = thr(2);
         if (label == VertexSource::Scan && options.readBack == ReadBack::Plane) {
             // The plane of the scan triangle seen at the vertex's pixel, at the vertex's own
@@ -134,6 +158,8 @@ void registerByDepthMaps(const Mesh& scan, const Vertices& scanUnwrapped, const 
             const double planeDepth = edge(1, 2) * scanUnwrapped(scan.F(f, 0), 2) + edge(2, 0) * scanUnwrapped(scan.F(f, 1), 2)
                 + edge(0, 1) * scanUnwrapped(scan.F(f, 2), 2);
             r = planeDepth;
+            if (!(std::abs(r - thr(2)) <= options.maxDisplacement))
+                grazing[static_cast<std::size_t>(v)] = SnapToScan;
         } else if (options.readBack == ReadBack::Thesis) {
             r += readThesis(merged, W, H, pixel, options.smoothing);
         } else {
@@ -144,7 +170,7 @@ void registerByDepthMaps(const Mesh& scan, const Vertices& scanUnwrapped, const 
 }
 
 void registerByProjection(const Vertices& scanUnwrapped, const Triangles& scanF, const Vertices& unwrapped, int first,
-    const RegistrationOptions& options, Registration& out)
+    const RegistrationOptions& options, Registration& out, std::vector<char>& grazing)
 {
     // Buckets of scan triangles over the unwrapped plane, about 4 pixels of the map each.
     DepthGrid buckets = gridAround(unwrapped, std::max(2, options.mapWidth / 4), std::max(2, options.mapHeight / 4));
@@ -177,6 +203,7 @@ void registerByProjection(const Vertices& scanUnwrapped, const Triangles& scanF,
         if (pixel.x() < 0 || pixel.y() < 0 || pixel.x() >= W || pixel.y() >= H || thr(0) < ears(0) || thr(0) > ears(1))
             continue;
         double best = std::numeric_limits<double>::infinity(), bestR = thr(2);
+        int bestF = -1;
         for (const int f : bucket[static_cast<std::size_t>(static_cast<int>(pixel.y())) * W + static_cast<int>(pixel.x())]) {
             Eigen::Vector2d q[3];
             for (int k = 0; k < 3; ++k)
@@ -194,12 +221,83 @@ void registerByProjection(const Vertices& scanUnwrapped, const Triangles& scanF,
             if (std::abs(r - thr(2)) < best) {
                 best = std::abs(r - thr(2));
                 bestR = r;
+                bestF = f;
             }
         }
         if (best <= options.maxDisplacement) {
             out.source[static_cast<std::size_t>(first + v)] = VertexSource::Scan;
             out.registered.row(first + v) = out.frame.fromCylinder({ thr(0), thr(1), bestR }).transpose();
+            const auto corner = [&](int k) { return Eigen::Vector3d(scanUnwrapped.row(scanF(bestF, k)).transpose()); };
+            if (rayCosine(corner(0), corner(1), corner(2)) < options.grazingCosine)
+                grazing[static_cast<std::size_t>(v)] = SnapToScan;
         }
+    }
+}
+
+// The re-placement of grazing vertices (register.h) on the registered range [first, first +
+// count), whose triangles (local indices) are F. `grazing` comes from the route; vertices whose
+// approximated surface is itself seen edge-on are added here.
+void repairGrazing(const SurfaceQuery& surface, const Triangles& F, int first, int count, const RegistrationOptions& options,
+    std::vector<char>& grazing, Registration& out)
+{
+    Mesh approx;
+    approx.V = out.approximation.middleRows(first, count);
+    approx.F = F;
+    const Vertices normals = vertexNormals(approx);
+    bool any = false;
+    for (int v = 0; v < count; ++v) {
+        const VertexSource label = out.source[static_cast<std::size_t>(first + v)];
+        char& g = grazing[static_cast<std::size_t>(v)];
+        if (g == Reliable && (label == VertexSource::Scan || label == VertexSource::Blended)) {
+            const Eigen::Vector3d d = approx.V.row(v).transpose() - out.frame.origin;
+            const Eigen::Vector3d radial = d - out.frame.up.dot(d) * out.frame.up;
+            if (radial.norm() > 0.0 && std::abs(normals.row(v).dot(radial.normalized())) < options.grazingCosine)
+                g = SnapToScan;
+        }
+        any = any || g != Reliable;
+    }
+    if (!any)
+        return;
+    std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(count));
+    for (Eigen::Index f = 0; f < F.rows(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int a = F(f, k), b = F(f, (k + 1) % 3);
+            neighbours[static_cast<std::size_t>(a)].push_back(b);
+            neighbours[static_cast<std::size_t>(b)].push_back(a);
+        }
+    // The displacement field, fixed where the route was reliable, relaxed (Jacobi steps of the
+    // umbrella average) over the grazing vertices. A patch with no reliable rim keeps 0: the
+    // approximation.
+    Vertices displacement = out.registered.middleRows(first, count) - approx.V;
+    for (int v = 0; v < count; ++v)
+        if (grazing[static_cast<std::size_t>(v)] != Reliable)
+            displacement.row(v).setZero();
+    Vertices next = displacement;
+    for (int iteration = 0; iteration < 200; ++iteration) {
+        for (int v = 0; v < count; ++v) {
+            const auto& around = neighbours[static_cast<std::size_t>(v)];
+            if (grazing[static_cast<std::size_t>(v)] == Reliable || around.empty())
+                continue;
+            Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
+            for (const int w : around)
+                sum += displacement.row(w);
+            next.row(v) = sum / static_cast<double>(around.size());
+        }
+        displacement.swap(next);
+    }
+    for (int v = 0; v < count; ++v) {
+        const char g = grazing[static_cast<std::size_t>(v)];
+        if (g == Reliable)
+            continue;
+        const Eigen::Vector3d placed = (approx.V.row(v) + displacement.row(v)).transpose();
+        out.registered.row(first + v) = placed.transpose();
+        if (g == FollowOnly)
+            continue;
+        const ClosestPoint nearest = surface.closest(placed);
+        const bool snap = !nearest.onBoundary && nearest.distance <= options.grazingSnap;
+        if (snap)
+            out.registered.row(first + v) = nearest.point.transpose();
+        out.source[static_cast<std::size_t>(first + v)] = snap ? VertexSource::Scan : VertexSource::Blended;
     }
 }
 
@@ -239,6 +337,8 @@ void checkRegistrationOptions(const RegistrationOptions& options, Eigen::Index t
         fail(where, ": smoothing ", options.smoothing, " outside [0, 1]");
     if (!(options.blendPixels > 0.0) || !(options.maxDisplacement > 0.0))
         fail(where, ": blend width and largest displacement must be positive");
+    if (!(options.grazingCosine >= 0.0 && options.grazingCosine < 1.0) || !(options.grazingSnap > 0.0))
+        fail(where, ": grazing cosine ", options.grazingCosine, " outside [0, 1) or snap distance ", options.grazingSnap, " not positive");
     const Eigen::Index end = options.endVertex < 0 ? templateVertices : options.endVertex;
     if (options.firstVertex < 0 || options.firstVertex >= end || end > templateVertices)
         fail(where, ": registered vertices [", options.firstVertex, ", ", end, ") not inside the template's [0, ", templateVertices, ")");
@@ -274,10 +374,13 @@ Registration registerScan(const Mesh& templ, const FeaturePoints& templatePoints
     Triangles F(static_cast<Eigen::Index>(kept.size()), 3);
     for (std::size_t i = 0; i < kept.size(); ++i)
         F.row(static_cast<Eigen::Index>(i)) = templ.F.row(kept[i]).array() - first;
+    std::vector<char> grazing(static_cast<std::size_t>(end - first), Reliable);
     if (options.method == RegistrationMethod::DepthMaps)
-        registerByDepthMaps(scan, scanUnwrapped, F, unwrapped, first, options, out);
+        registerByDepthMaps(scan, scanUnwrapped, F, unwrapped, first, options, out, grazing);
     else
-        registerByProjection(scanUnwrapped, scan.F, unwrapped, first, options, out);
+        registerByProjection(scanUnwrapped, scan.F, unwrapped, first, options, out, grazing);
+    if (options.grazingCosine > 0.0)
+        repairGrazing(surface, F, first, end - first, options, grazing, out);
     return out;
 }
 

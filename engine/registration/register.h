@@ -21,6 +21,20 @@
 //      the unwrapped plane (barycentric, eq. 3.8), the one nearest its own depth where the scan
 //      folds; vertices with no scan triangle under them keep the approximation. No blending.
 //
+// Grazing vertices (where the thesis' method is weakest). Along a ray from a vertical axis, a
+// surface that faces up or down (under the chin and jaw, the nostrils' sides) is crossed almost
+// tangentially: a tenth of a millimetre along the axis moves the depth the ray meets by
+// millimetres, and the plane of such a scan triangle, read a fraction of a pixel from where the
+// map sampled it, is far off (47 mm under the chin of one ICT face; spikes of 16 mm in
+// `eval observe` on 250 registered ICT faces). A vertex is grazing when the scan triangle that
+// gives its depth (either route), or the approximation's own surface at it, meets its ray at a
+// cosine below grazingCosine, or when its read depth is more than maxDisplacement from the
+// approximation. Grazing vertices are re-placed after either route: they take the displacement
+// of their reliable neighbours, diffused over the mesh (a harmonic fill of each grazing patch
+// from its rim), and a visible one is then snapped to the nearest point of the scan if that is
+// within grazingSnap mm and not on the scan's border (label Scan; Blended if not snapped). An
+// Occluded vertex whose hiding surface is grazing takes the diffused displacement unsnapped.
+//
 // Reading the merged map back (thesis 3.2.12.3, the aliasing problem). A depth map samples both
 // meshes at pixel centres only, so reading it at a vertex between them is off by the meshes'
 // creases within a pixel: on the test head of tests/registration (a 642-vertex template, 256 x 256
@@ -64,6 +78,14 @@ struct RegistrationOptions {
     bool betweenEars = true;
     /// A vertex more than this (mm) below the approximation's outermost surface is Occluded.
     double occlusionTolerance = 0.5;
+    /// Grazing vertices (see registerScan): where the approximation's surface normal makes an
+    /// angle with the ray from the axis whose cosine is below this, the surface is seen edge-on
+    /// (under the chin, beside the nostrils) and a depth along the ray is unreliable. 0 turns
+    /// the repair off.
+    double grazingCosine = 0.35;
+    /// A grazing vertex is snapped to the scan only if the nearest scan point is within this
+    /// (mm) of where its neighbours' displacement puts it; otherwise it keeps that position.
+    double grazingSnap = 3.0;
     FeaturePointLimits limits;
     /// Only vertices [firstVertex, endVertex) are registered (e.g. the template's "skin"
     /// component), and only triangles among them rasterised; every other vertex (eyes, teeth)

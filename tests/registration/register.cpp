@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <numbers>
 
 using namespace facesketch;
 using namespace facesketch::registration;
@@ -254,4 +255,48 @@ TEST_CASE("registerScan: the scan is used only between the ears unless told othe
         else
             REQUIRE(behindMoved > behind / 2);
     }
+}
+
+TEST_CASE("registerScan: a fin the rays graze (a scanning artefact under the jaw) leaves no spikes")
+{
+    const Mesh templ = test::makeHead(4);
+    const FeaturePoints templPoints = landmarkPositions(templ, test::headLandmarks(templ));
+    const Mesh head = test::makeHead(4);
+    // A horizontal fin 8 mm wide round the head at y = -70 mm, such as a scanner leaves at an
+    // occluding edge: seen from the axis, its triangles are edge-on slivers.
+    const double y = -70.0, scale = std::sqrt(1.0 - (y / 90.0) * (y / 90.0));
+    const int steps = 96;
+    Mesh scan;
+    scan.V.resize(head.V.rows() + 2 * steps, 3);
+    scan.V.topRows(head.V.rows()) = head.V;
+    scan.F.resize(head.F.rows() + 2 * steps, 3);
+    scan.F.topRows(head.F.rows()) = head.F;
+    const int base = static_cast<int>(head.V.rows());
+    for (int i = 0; i < steps; ++i) {
+        const double phi = 2.0 * std::numbers::pi * i / steps;
+        const Eigen::Vector3d inner(0.99 * 70.0 * scale * std::sin(phi), y, 0.99 * 80.0 * scale * std::cos(phi));
+        Eigen::Vector3d radial(inner.x(), 0.0, inner.z());
+        radial.normalize();
+        scan.V.row(base + 2 * i) = inner.transpose();
+        scan.V.row(base + 2 * i + 1) = (inner + 8.0 * radial).transpose();
+        const int a = base + 2 * i, b = base + 2 * ((i + 1) % steps);
+        scan.F.row(head.F.rows() + 2 * i) << a, b, a + 1;
+        scan.F.row(head.F.rows() + 2 * i + 1) << b, b + 1, a + 1;
+    }
+    const SurfaceQuery skin(head);
+    auto worst = [&](double grazingCosine) {
+        RegistrationOptions options;
+        options.mapWidth = options.mapHeight = 256;
+        options.grazingCosine = grazingCosine;
+        const Registration r = registerScan(templ, templPoints, scan, test::headPoints(), "fin.ply", options);
+        double most = 0.0; // the farthest registered vertex from the skin, near the fin, in front
+        for (Eigen::Index v = 0; v < templ.V.rows(); ++v)
+            if (std::abs(templ.V(v, 1) - y) < 10.0 && templ.V(v, 2) > 20.0)
+                most = std::max(most, skin.closest(r.registered.row(v).transpose()).distance);
+        return most;
+    };
+    const double off = worst(0.0), on = worst(RegistrationOptions {}.grazingCosine);
+    INFO("farthest vertex from the skin near the fin: " << off << " mm without the repair, " << on << " mm with it");
+    REQUIRE(off > 2.0);
+    REQUIRE(on < 0.5);
 }
