@@ -80,10 +80,15 @@ void uploadBuffer(Device& device, Buffer& buffer, const void* data, std::size_t 
     }
     Buffer staging = createBuffer(device, size, 0, MemoryUse::Readback);
     std::memcpy(staging.mapped, data, size);
-    submitAndWait(device, [&](VkCommandBuffer cmd) {
-        VkBufferCopy region { 0, offset, size };
-        vkCmdCopyBuffer(cmd, staging.buffer, buffer.buffer, 1, &region);
-    });
+    try {
+        submitAndWait(device, [&](VkCommandBuffer cmd) {
+            VkBufferCopy region { 0, offset, size };
+            vkCmdCopyBuffer(cmd, staging.buffer, buffer.buffer, 1, &region);
+        });
+    } catch (...) {
+        destroyBuffer(device, staging); // a lost device: the staging buffer is not in use
+        throw;
+    }
     destroyBuffer(device, staging);
 }
 
@@ -98,10 +103,15 @@ void readbackBuffer(Device& device, const Buffer& buffer, void* data, std::size_
         return;
     }
     Buffer staging = createBuffer(device, size, 0, MemoryUse::Readback);
-    submitAndWait(device, [&](VkCommandBuffer cmd) {
-        VkBufferCopy region { offset, 0, size };
-        vkCmdCopyBuffer(cmd, buffer.buffer, staging.buffer, 1, &region);
-    });
+    try {
+        submitAndWait(device, [&](VkCommandBuffer cmd) {
+            VkBufferCopy region { offset, 0, size };
+            vkCmdCopyBuffer(cmd, buffer.buffer, staging.buffer, 1, &region);
+        });
+    } catch (...) {
+        destroyBuffer(device, staging);
+        throw;
+    }
     std::memcpy(data, staging.mapped, size);
     destroyBuffer(device, staging);
 }

@@ -386,6 +386,12 @@ VkCommandBuffer beginOneShot(Device& d)
     return cmd;
 }
 
+void abandonOneShot(Device& d, VkCommandBuffer cmd)
+{
+    // Never submitted, so not pending: a buffer still recording may be freed as it is.
+    vkFreeCommandBuffers(d.device, d.commandPool, 1, &cmd);
+}
+
 void endOneShotAndWait(Device& d, VkCommandBuffer cmd)
 {
     VK_CHECK(vkEndCommandBuffer(cmd));

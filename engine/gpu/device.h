@@ -142,18 +142,24 @@ private:
 std::uint64_t validationMessageCount();
 
 /// Records commands through `record` into a one-shot command buffer, submits it and waits.
-/// Throws GpuError when the submission or the wait fails (a lost device), having freed the
-/// command buffer.
+/// Throws GpuError when the submission or the wait fails (a lost device); an exception from
+/// `record` is passed on unsubmitted. Either way the command buffer is freed first.
 template <typename F> void submitAndWait(Device& device, F&& record);
 
-// Implementation detail of submitAndWait.
+// Implementation details of submitAndWait.
 VkCommandBuffer beginOneShot(Device& device);
 void endOneShotAndWait(Device& device, VkCommandBuffer cmd);
+void abandonOneShot(Device& device, VkCommandBuffer cmd);
 
 template <typename F> void submitAndWait(Device& device, F&& record)
 {
     VkCommandBuffer cmd = beginOneShot(device);
-    record(cmd);
+    try {
+        record(cmd);
+    } catch (...) {
+        abandonOneShot(device, cmd);
+        throw;
+    }
     endOneShotAndWait(device, cmd);
 }
 

@@ -121,3 +121,27 @@ TEST_CASE("buffers: an image is created with its size, format and view, and dest
     REQUIRE(image.image == VK_NULL_HANDLE);
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
+
+TEST_CASE("submitAndWait: an exception while recording is passed on and nothing recorded runs")
+{
+    gpu::Device& d = test::device();
+    gpu::Buffer b = gpu::createBuffer(d, 64, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    const std::vector<std::uint32_t> zeros(16, 0u);
+    gpu::uploadBuffer(d, b, zeros.data(), 64);
+    for (int i = 0; i < 3; ++i)
+        REQUIRE_THROWS_WITH(gpu::submitAndWait(d,
+                                [&](VkCommandBuffer cmd) {
+                                    vkCmdFillBuffer(cmd, b.buffer, 0, 64, 0xdeadbeefu);
+                                    fail("recording stopped half way");
+                                }),
+            Catch::Contains("recording stopped half way"));
+    std::vector<std::uint32_t> back(16, 1u);
+    gpu::readbackBuffer(d, b, back.data(), 64);
+    REQUIRE(back == zeros);
+    // The device goes on working.
+    gpu::submitAndWait(d, [&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, b.buffer, 0, 64, 7u); });
+    gpu::readbackBuffer(d, b, back.data(), 64);
+    REQUIRE(back == std::vector<std::uint32_t>(16, 7u));
+    gpu::destroyBuffer(d, b);
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
