@@ -281,11 +281,11 @@ private:
     // Pose mode and the timeline.
     bool poseMode_ = false;
     bool alternative_ = false;
-    double time_ = 0;   ///< the timeline's current time, s
-    double fps_ = 30;   ///< playback and glTF export frame rate
+    double time_ = 0; ///< the timeline's current time, s
+    double fps_ = 30; ///< playback and glTF export frame rate
     bool playing_ = false, loop_ = true;
     double lastTick_ = -1;
-    bool timelineShown_ = false; ///< the face shows the timeline at time_ (else the current pose)
+    bool timelineShown_ = false;               ///< the face shows the timeline at time_ (else the current pose)
     std::unique_ptr<pose::Timeline> timeline_; ///< through the keyframes in effect (two or more)
     std::unique_ptr<pose::TimelinePlayer> player_;
     Vertices frame_; ///< the timeline's face at the shown time
@@ -328,7 +328,9 @@ App::App(const GuiCommand& c)
         if (c.sessionOut.empty())
             std::snprintf(sessionPath_, sizeof sessionPath_, "%s", sessionArg_.string().c_str());
         // The session's own pose model unless --poses names another.
-        const fs::path poses = !c.poses.empty() ? fs::path(c.poses) : s.poses.empty() ? fs::path() : sketch::sessionPath(sessionArg_, s.poses);
+        const fs::path poses = !c.poses.empty() ? fs::path(c.poses)
+            : s.poses.empty()                   ? fs::path()
+                                                : sketch::sessionPath(sessionArg_, s.poses);
         startLoad(model, dataset, poses, false);
     } else if (c.inputs.size() == 2) {
         startLoad(c.inputs[0], c.inputs[1], c.poses, false);
@@ -369,13 +371,14 @@ void App::startTrain(fs::path dataset, fs::path model)
     if (job_ && !job_->finished())
         return;
     const fs::path poses = loaded_ ? loaded_->posesPath : fs::path();
-    job_ = std::make_unique<gui::Job>("training a model on " + dataset.filename().string(), [this, model, dataset, poses](gui::Progress& p) {
-        const dataset::Dataset ds = dataset::openDataset(dataset);
-        const stats::FaceModel m
-            = model::trainHeadModel(ds, {}, [&](const std::string& what, double f) { p.report(0.8 * f, "training: " + what); });
-        stats::saveFaceModel(m, model);
-        pending_ = load(model, dataset, poses, p);
-    });
+    job_
+        = std::make_unique<gui::Job>("training a model on " + dataset.filename().string(), [this, model, dataset, poses](gui::Progress& p) {
+              const dataset::Dataset ds = dataset::openDataset(dataset);
+              const stats::FaceModel m
+                  = model::trainHeadModel(ds, {}, [&](const std::string& what, double f) { p.report(0.8 * f, "training: " + what); });
+              stats::saveFaceModel(m, model);
+              pending_ = load(model, dataset, poses, p);
+          });
 }
 
 void App::pollJob()
@@ -894,7 +897,10 @@ void App::save(const fs::path& path)
         doc_->save(path);
         doc_->markSaved();
         say("saved " + path.string());
-        std::cout << "gui: saved " << path.string() << " (" << doc_->appliedCount() << " strokes)" << std::endl;
+        std::cout << "gui: saved " << path.string() << " (" << doc_->appliedCount() << " strokes)";
+        if (doc_->poseAppliedCount() > 0)
+            std::cout << " with " << doc_->poseAppliedCount() << " pose actions";
+        std::cout << std::endl;
     } catch (const std::exception& e) {
         say(std::string("not saved: ") + e.what());
     }
@@ -1225,8 +1231,8 @@ void App::timelinePanel()
         const float range = static_cast<float>(std::max(last + 1.0, 2.0));
         for (const pose::Keyframe& k : keys) {
             const float x = p.x + width * static_cast<float>(k.time) / range;
-            draw->AddTriangleFilled({ x, p.y }, { x - 5 * scale, p.y + 9 * scale }, { x + 5 * scale, p.y + 9 * scale },
-                IM_COL32(240, 150, 20, 255));
+            draw->AddTriangleFilled(
+                { x, p.y }, { x - 5 * scale, p.y + 9 * scale }, { x + 5 * scale, p.y + 9 * scale }, IM_COL32(240, 150, 20, 255));
         }
         const float x = p.x + width * static_cast<float>(time_) / range;
         draw->AddLine({ x, p.y }, { x, p.y + 10 * scale }, IM_COL32(40, 90, 240, 255), 2 * scale);
