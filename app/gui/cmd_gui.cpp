@@ -60,6 +60,7 @@ struct GuiCommand {
     std::vector<std::string> inputs;
     std::string sessionOut, exportOut, screenshot, poses, glbOut;
     std::string mode = "sketch";
+    double time = -1;
     int quitAfterFrames = 0;
     int benchFrames = 0;
     int width = 1280, height = 800;
@@ -467,6 +468,10 @@ void App::install(std::unique_ptr<Loaded> loaded)
     }
     if (c_.mode == "pose")
         setPoseMode(true);
+    if (poseMode_ && c_.time >= 0) {
+        poseChanged();
+        setTime(c_.time);
+    }
     faceChanged();
     viewDirty_ = true;
     std::cout << "gui: ready, " << loaded_->faceModel->vertexCount() << " vertices, recovery file " << autosave_->file().string()
@@ -1087,18 +1092,16 @@ void App::panels()
         ImGui::Checkbox("symmetry", &symmetry_);
     } else {
         ImGui::Checkbox("alternative interpretation (A)", &alternative_);
-        ImGui::SameLine();
-        if (ImGui::Button("switch last"))
+        if (ImGui::Button("switch last stroke's"))
             switchInterpretation();
+        ImGui::SameLine();
         if (ImGui::Button("clear pose")) {
             sketch::PoseAction a;
             a.kind = sketch::PoseActionKind::Clear;
             addPoseAction(a, "clear");
         }
-        if (const pose::PoseEditor* e = doc_->poseEditor(); e && doc_->poseAppliedCount() > 0) {
-            ImGui::SameLine();
-            ImGui::Text("%zu feature points drawn, component %d", e->reading().fps.size(), e->component());
-        }
+        if (const pose::PoseEditor* e = doc_->poseEditor(); e && doc_->poseAppliedCount() > 0)
+            ImGui::Text("%zu FPs drawn (orange); completed (blue)", e->reading().fps.size());
     }
     if (ImGui::Checkbox("contours (C)", &showContours_))
         viewDirty_ = true;
@@ -1428,6 +1431,7 @@ void addGuiCommand(CLI::App& root)
         "trained once into the cache)");
     cmd->add_option("--glb-out", c->glbOut, "Where Ctrl+G exports the timeline as a glTF animation (.glb)");
     cmd->add_option("--mode", c->mode, "Start in this mode: sketch or pose")->capture_default_str();
+    cmd->add_option("--time", c->time, "Pose mode: start showing the timeline at this time (s)")->check(CLI::NonNegativeNumber);
     cmd->add_option("--screenshot", c->screenshot, "Write the last frame (with the panels) to this PNG on quitting");
     cmd->add_option("--quit-after-frames", c->quitAfterFrames, "Quit after N frames with data loaded")->check(CLI::NonNegativeNumber);
     cmd->add_option("--bench-frames", c->benchFrames,
