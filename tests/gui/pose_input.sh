@@ -5,7 +5,7 @@
 # Ctrl+Z and Ctrl+Shift+Z, Ctrl+S (to --session-out), Ctrl+E (the posed face), Ctrl+G (the timeline
 # as .glb), Ctrl+Q. Then: the session holds the three pose actions; `facesketch pose` replaying it
 # gives the app's posed face to 1e-5 mm, `facesketch animate` the identical .glb; the posed face
-# moved from the neutral one.
+# moved from the neutral one; the autosave on exit restores the pose actions at the next start.
 # Usage: pose_input.sh FACESKETCH WORK
 set -euo pipefail
 if [ -z "${DISPLAY:-}" ]; then exec xvfb-run -a -s "-screen 0 1280x1024x24" bash "$0" "$@"; fi
@@ -57,6 +57,15 @@ grep -q "1 pose strokes, 2 keyframes replayed" "$WORK/replay.log" || fail "pose 
 "$FACESKETCH" animate "$WORK/app.json" -o "$WORK/replay.glb" --fps 30 > "$WORK/animate.log" \
   || fail "facesketch animate could not play the session: $(cat "$WORK/animate.log")"
 cmp -s "$WORK/app.glb" "$WORK/replay.glb" || fail "the app's .glb differs from facesketch animate's"
+
+# The autosave on exit holds the pose actions too, and the next start restores them.
+"$FACESKETCH" gui "$WORK/faces.model" "$WORK/faces" --poses "$WORK/posed.poses" --size 1000x760 --restore --quit-after-frames 3 \
+  > "$WORK/restore.log" 2>&1 || fail "the restoring app exited with code $?: $(tail -n 5 "$WORK/restore.log")"
+grep -q "gui: restored 3 pose actions from the recovery file" "$WORK/restore.log" || fail "the app did not restore the pose actions"
+"$FACESKETCH" pose "$WORK/posed.poses" --session "$WORK/state/recovery-session.json" -o "$WORK/recovered.obj" > /dev/null \
+  || fail "facesketch pose could not replay the recovery file"
+cmp -s "$WORK/app.obj" "$WORK/recovered.obj" || fail "the recovery file poses another face than the app's"
+grep -q "validation" "$WORK/restore.log" && fail "validation messages on restoring"
 
 python3 - "$WORK" << 'PY'
 import json, sys
