@@ -21,6 +21,7 @@
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "dataset/synth/synth_dataset.h"
+#include "geometry/normals.h"
 #include "gui/document.h"
 #include "gui/navigation.h"
 #include "gui/overlay.h"
@@ -868,11 +869,17 @@ void App::poseChanged()
     }
     std::vector<glm::vec3> fps, hits;
     if (poseMode_ && e && doc_->poseAppliedCount() > 0) {
+        // Lifted 1 mm off the surface along its normal: points are depth tested, and a point on
+        // the surface would be half hidden by it.
         const Vertices p = e->featurePointPositions();
+        const Vertices normals = vertexNormals(e->face());
+        const auto& fpVertex = loaded_->poseModel->fps.vertices;
+        auto lifted
+            = [&](const Eigen::Vector3d& x, int fp) { return toVec3(x + normals.row(fpVertex[static_cast<size_t>(fp)]).transpose()); };
         for (Eigen::Index i = 0; i < p.rows(); ++i)
-            fps.push_back({ static_cast<float>(p(i, 0)), static_cast<float>(p(i, 1)), static_cast<float>(p(i, 2)) });
+            fps.push_back(lifted(p.row(i).transpose(), static_cast<int>(i)));
         for (const pose::IdentifiedFp& fp : e->reading().fps)
-            hits.push_back(toVec3(fp.position));
+            hits.push_back(lifted(fp.position, fp.fp));
     }
     scene_->setPoints(fpItem_, fps, { { 0.15f, 0.35f, 0.95f, 1 } });
     scene_->setPoints(hitItem_, hits, { { 0.95f, 0.45f, 0.05f, 1 } });
