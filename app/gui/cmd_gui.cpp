@@ -62,6 +62,7 @@ struct GuiCommand {
     std::string sessionOut, exportOut, screenshot, poses, glbOut;
     std::string mode = "sketch";
     double time = -1;
+    bool play = false;
     int quitAfterFrames = 0;
     int benchFrames = 0;
     int width = 1280, height = 800;
@@ -292,6 +293,7 @@ private:
     std::unique_ptr<pose::TimelinePlayer> player_;
     Vertices frame_; ///< the timeline's face at the shown time
     double frameTime_ = -1;
+    bool contoursStale_ = false; ///< hidden during playback, to be rebuilt when it stops
     char glbPath_[512] = "timeline.glb";
     bool trace_ = std::getenv("FACESKETCH_GUI_TRACE") != nullptr; ///< print input events and frame times
 };
@@ -472,6 +474,10 @@ void App::install(std::unique_ptr<Loaded> loaded)
     if (poseMode_ && c_.time >= 0) {
         poseChanged();
         setTime(c_.time);
+    }
+    if (poseMode_ && c_.play) {
+        poseChanged();
+        playing_ = timeline_ != nullptr;
     }
     faceChanged();
     viewDirty_ = true;
@@ -848,8 +854,16 @@ void App::showFrame()
         return;
     }
     scene_->updateMesh(faceItem_, frame_);
+    // While playing, the contours (curvature and the contour pass on the CPU, several times the
+    // rest of a frame at 6,000 vertices) are hidden and drawn again for the frame playback stops on.
+    if (playing_) {
+        scene_->setVisible(contourItem_, false);
+        contoursStale_ = true;
+        return;
+    }
     curvature_ = estimateCurvature(contourFace());
     viewDirty_ = true;
+    contoursStale_ = false;
 }
 
 void App::poseChanged()
@@ -1009,13 +1023,14 @@ void App::updateStrokeItems()
 void App::viewChanged()
 {
     const Camera camera = orbitCamera(nav_->view());
-    if (showContours_) {
+    // (curvature_ is of another face than the one shown while the contours are stale.)
+    if (showContours_ && !contoursStale_) {
         const ContourLines lines = contourLines(contourFace(), curvature_, camera, contourParams_, loaded_->data->flags);
         std::vector<glm::vec3> all = lines.silhouette;
         all.insert(all.end(), lines.suggestive.begin(), lines.suggestive.end());
         scene_->setLines(contourItem_, all, { { 0.08f, 0.08f, 0.1f, 1 } });
     }
-    scene_->setVisible(contourItem_, showContours_);
+    scene_->setVisible(contourItem_, showContours_ && !contoursStale_);
     updateStrokeItems();
     overlayStale_ = true;
     overlayQuietFrames_ = 0;
@@ -1357,6 +1372,11 @@ void App::run()
             scene_->setScreenPolyline(drawingItem_, drawing, { { 0.85f, 0.1f, 0.1f, 1 } });
             scene_->setVisible(flashItem_, !poseMode_ && now < flashUntil_ && std::fmod(now * 8, 2.0) < 1.4);
             advancePlayback(now);
+            if (!playing_ && contoursStale_) {
+                contoursStale_ = false;
+                curvature_ = estimateCurvature(contourFace());
+                viewDirty_ = true;
+            }
             scene_->setVisible(fpItem_, poseMode_ && !showingTimeline());
             scene_->setVisible(hitItem_, poseMode_ && !showingTimeline());
             autosave_->tick(*doc_, now);
@@ -1418,6 +1438,12 @@ void App::run()
         std::cout << "gui_frame_p95_ms_" << v << "v " << percentile(frameMs, 0.95) << "\n";
         std::cout << "gui_stroke_to_frame_ms_" << v << "v " << strokeToFrameMs.value_or(-1) << "\n";
     }
+    if (c_.play && doc_ && doc_->poseEditor()) {
+        // Frame times while the timeline plays (each frame: spline, mapping, contours, drawing).
+        const long v = doc_->poseEditor()->neutral().vertexCount();
+        std::cout << std::fixed << std::setprecision(2) << "gui_play_frame_ms_" << v << "v " << percentile(frameMs, 0.5) << "\n"
+                  << "gui_play_frame_p95_ms_" << v << "v " << percentile(frameMs, 0.95) << "\n";
+    }
 }
 
 } // namespace
@@ -1439,6 +1465,7 @@ void addGuiCommand(CLI::App& root)
     cmd->add_option("--glb-out", c->glbOut, "Where Ctrl+G exports the timeline as a glTF animation (.glb)");
     cmd->add_option("--mode", c->mode, "Start in this mode: sketch or pose")->capture_default_str();
     cmd->add_option("--time", c->time, "Pose mode: start showing the timeline at this time (s)")->check(CLI::NonNegativeNumber);
+    cmd->add_flag("--play", c->play, "Pose mode: start playing the timeline");
     cmd->add_option("--screenshot", c->screenshot, "Write the last frame (with the panels) to this PNG on quitting");
     cmd->add_option("--quit-after-frames", c->quitAfterFrames, "Quit after N frames with data loaded")->check(CLI::NonNegativeNumber);
     cmd->add_option("--bench-frames", c->benchFrames,
