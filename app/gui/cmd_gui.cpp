@@ -215,6 +215,7 @@ private:
     void addKeyframe();
     void switchInterpretation();
     void setTime(double seconds);
+    void togglePlay();
     void advancePlayback(double now);
     void poseChanged();
     void showFrame();
@@ -616,8 +617,7 @@ void App::onKey(int key, int action, int mods)
     } else if (!ctrl && poseMode_ && key == GLFW_KEY_K && action == GLFW_PRESS) {
         addKeyframe();
     } else if (!ctrl && poseMode_ && key == GLFW_KEY_SPACE && action == GLFW_PRESS) {
-        playing_ = !playing_ && timeline_;
-        lastTick_ = -1;
+        togglePlay();
     } else if (!ctrl && poseMode_ && key == GLFW_KEY_A && action == GLFW_PRESS) {
         alternative_ = !alternative_;
     } else if (!ctrl && action == GLFW_PRESS) {
@@ -812,6 +812,21 @@ void App::setTime(double seconds)
     text << std::fixed << std::setprecision(3) << "time " << time_ << " s";
     std::cout << "gui: " << text.str() << std::endl;
     showFrame();
+}
+
+void App::togglePlay()
+{
+    if (!timeline_) {
+        say("the timeline needs two keyframes (K adds one at the current time)");
+        return;
+    }
+    playing_ = !playing_;
+    lastTick_ = -1;
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(3) << (playing_ ? "playing from " : "paused at ") << time_ << " s";
+    std::cout << "gui: " << text.str() << std::endl;
+    if (!playing_)
+        showFrame();
 }
 
 void App::advancePlayback(double now)
@@ -1267,10 +1282,8 @@ void App::timelinePanel()
         addKeyframe();
     ImGui::SameLine();
     ImGui::BeginDisabled(!timeline_);
-    if (ImGui::Button(playing_ ? "pause (Space)" : "play (Space)")) {
-        playing_ = !playing_;
-        lastTick_ = -1;
-    }
+    if (ImGui::Button(playing_ ? "pause (Space)" : "play (Space)"))
+        togglePlay();
     ImGui::EndDisabled();
     ImGui::SameLine();
     ImGui::Checkbox("loop", &loop_);

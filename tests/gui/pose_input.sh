@@ -2,10 +2,11 @@
 # Pose mode and the timeline as a person would use them (issue 14): under an X server (Xvfb when
 # there is no DISPLAY), real input events from xdotool: Tab (pose mode), K (a keyframe at 0 s from
 # the neutral pose), a pose stroke along a smiling upper lip, Up (time 1 s), K (a second keyframe),
-# Ctrl+Z and Ctrl+Shift+Z, Ctrl+S (to --session-out), Ctrl+E (the posed face), Ctrl+G (the timeline
-# as .glb), Ctrl+Q. Then: the session holds the three pose actions; `facesketch pose` replaying it
-# gives the app's posed face to 1e-5 mm, `facesketch animate` the identical .glb; the posed face
-# moved from the neutral one; the autosave on exit restores the pose actions at the next start.
+# Space (play, looping from the end), Space (pause), Ctrl+Z and Ctrl+Shift+Z, Ctrl+S (to
+# --session-out), Ctrl+E (the posed face), Ctrl+G (the timeline as .glb), Ctrl+Q. Then: the session
+# holds the three pose actions; `facesketch pose` replaying it gives the app's posed face to
+# 1e-5 mm, `facesketch animate` the identical .glb; the posed face moved from the neutral one; the
+# autosave on exit restores the pose actions at the next start.
 # Usage: pose_input.sh FACESKETCH WORK
 set -euo pipefail
 if [ -z "${DISPLAY:-}" ]; then exec xvfb-run -a -s "-screen 0 1280x1024x24" bash "$0" "$@"; fi
@@ -36,6 +37,11 @@ key Up
 wait_for "gui: time 1.000 s"
 key k
 wait_for "gui: keyframe at 1.000 s \(2 keyframes\)"
+key space
+wait_for "gui: playing from 1.000 s"
+sleep 0.5
+key space
+wait_for "gui: paused at [01]\.[0-9]+ s"
 key ctrl+z
 wait_for "gui: undone, 0 strokes in effect, 2 pose actions"
 key ctrl+shift+z
