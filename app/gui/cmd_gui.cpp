@@ -416,15 +416,16 @@ void App::install(std::unique_ptr<Loaded> loaded)
     window_.waitIdle(); // the old items may be in flight
     scene_->clear();
     haveItems_ = false;
+    // The player refers to the timeline and the old pose model: both go before the data.
+    player_.reset();
+    timeline_.reset();
+    playing_ = false;
+    timelineShown_ = false;
     doc_.reset();
     loaded_ = std::move(loaded);
     doc_ = std::make_unique<gui::Document>(*loaded_->replayer, loaded_->model, loaded_->dataset);
     if (loaded_->poseModel)
         doc_->enablePosing(*loaded_->poseModel, loaded_->posesPath, [this] { return shapeHead(); });
-    timeline_.reset();
-    player_.reset();
-    playing_ = false;
-    timelineShown_ = false;
     autosave_ = std::make_unique<gui::Autosave>(gui::recoveryFile(), c_.autosaveSeconds, doc_->revision());
 
     const Mesh mean = meanMesh(*loaded_->faceModel);
@@ -470,6 +471,8 @@ void App::install(std::unique_ptr<Loaded> loaded)
                 std::cout << "gui: restored " << doc_->poseAppliedCount() << " pose actions from the recovery file" << std::endl;
         }
     }
+    if (!doc_->posingEnabled())
+        poseMode_ = false; // new data without a pose model
     if (c_.mode == "pose")
         setPoseMode(true);
     if (poseMode_ && c_.time >= 0) {
