@@ -5,7 +5,12 @@
 // data. Long work (synthesising and training the built-in data, loading a dataset, the curvature
 // pass) runs on a worker thread (gui/worker.h) with a progress bar and Cancel.
 //
-// Pose mode and the timeline (issue 13) are not here yet: they come with the pose module.
+// Pose mode (Tab; thesis 5.3-5.5, engine/pose): left-button strokes are pose strokes, read for
+// feature points and completed to a pose by gui::Document's pose::PoseEditor; the completed
+// feature points and the ones the strokes identified are drawn as points. The timeline panel
+// adds keyframes from the current pose at the current time, scrubs, plays (at a frame rate,
+// looping or not) through pose::TimelinePlayer, each frame rebuilt by the mapping, and exports
+// the played timeline as glTF (pose/animation.h), as `facesketch animate` does.
 
 #include "commands.h"
 #include "sketch_data.h"
@@ -16,6 +21,7 @@
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "dataset/synth/synth_dataset.h"
+#include "geometry/normals.h"
 #include "gui/document.h"
 #include "gui/navigation.h"
 #include "gui/overlay.h"
@@ -23,6 +29,9 @@
 #include "gui/worker.h"
 #include "model/head_assembly.h"
 #include "model/head_model.h"
+#include "pose/animation.h"
+#include "pose/minimal_poses.h"
+#include "pose/pose_file.h"
 #include "render/scene_renderer.h"
 #include "sketch/feedback.h"
 #include "sketch/simulate.h"
@@ -50,7 +59,10 @@ namespace fs = std::filesystem;
 
 struct GuiCommand {
     std::vector<std::string> inputs;
-    std::string sessionOut, exportOut, screenshot;
+    std::string sessionOut, exportOut, screenshot, poses, glbOut;
+    std::string mode = "sketch";
+    double time = -1;
+    bool play = false;
     int quitAfterFrames = 0;
     int benchFrames = 0;
     int width = 1280, height = 800;
@@ -70,6 +82,8 @@ struct Loaded {
     std::unique_ptr<gpu::ScopedDevice> compute; ///< the reader's and the overlay's device (not the window's)
     std::unique_ptr<sketch::SessionReplayer> replayer;
     std::unique_ptr<gui::CandidateCloud> cloud;
+    fs::path posesPath;                         ///< empty: no posing
+    std::unique_ptr<pose::PoseModel> poseModel; ///< loaded from posesPath
     ~Loaded()
     {
         // The GPU objects before their device.
@@ -106,9 +120,36 @@ void makeBuiltIn(const fs::path& folder, gui::Progress& progress)
     }
 }
 
-std::unique_ptr<Loaded> load(const fs::path& model, const fs::path& dataset, gui::Progress& progress)
+// The built-in pose model: a posed synthetic set of the built-in faces' resolution (its
+// topology), trained once into the cache beside the built-in face model.
+void makeBuiltInPoses(const fs::path& folder, gui::Progress& progress)
+{
+    const fs::path posed = folder / "posed", model = folder / "faces.poses";
+    if (fs::exists(model))
+        return;
+    if (!fs::exists(posed / "manifest.json")) {
+        dataset::SynthOptions synth;
+        synth.resolution = dataset::Resolution::High;
+        synth.identities = 24;
+        synth.poses = true;
+        synth.seed = 7;
+        dataset::writeSynthDataset(posed, synth,
+            [&](int done, int total) { progress.report(0.6 * done / std::max(total, 1), "synthesising the built-in poses"); });
+    }
+    progress.report(0.6, "training the built-in pose model");
+    const dataset::Dataset ds = dataset::openDataset(posed);
+    const pose::PoseSet all = pose::loadPoseSet(ds, { dataset::Role::Train, dataset::Role::Contour });
+    const pose::PoseSet train = pose::selectRole(all, dataset::Role::Train);
+    const pose::PoseSet contour = pose::selectRole(all, dataset::Role::Contour);
+    progress.checkCancelled();
+    const pose::PoseModel m = pose::trainPoseModel(train, contour.identityCount() > 0 ? contour : train, pose::loadMinimalPoses(), {});
+    pose::savePoseModel(m, model);
+}
+
+std::unique_ptr<Loaded> load(const fs::path& model, const fs::path& dataset, const fs::path& poses, gui::Progress& progress)
 {
     auto l = std::make_unique<Loaded>();
+    l->posesPath = poses;
     l->model = model;
     l->dataset = dataset;
     progress.report(0.8, "loading the model");
@@ -121,6 +162,10 @@ std::unique_ptr<Loaded> load(const fs::path& model, const fs::path& dataset, gui
         **l->compute, *l->faceModel, l->data->candidateFaces, l->data->flags, l->data->landmarks, model.string());
     progress.report(0.94, "candidate cloud for the overlay");
     l->cloud = std::make_unique<gui::CandidateCloud>(**l->compute, l->data->candidateFaces, l->data->flags, defaultCacheFolder());
+    if (!poses.empty()) {
+        progress.report(0.98, "loading the pose model");
+        l->poseModel = std::make_unique<pose::PoseModel>(pose::loadPoseModel(poses));
+    }
     progress.report(1.0, "ready");
     return l;
 }
@@ -153,7 +198,7 @@ public:
 
 private:
     // Data and document.
-    void startLoad(fs::path model, fs::path dataset, bool builtIn);
+    void startLoad(fs::path model, fs::path dataset, fs::path poses, bool builtIn);
     void startTrain(fs::path dataset, fs::path model);
     void install(std::unique_ptr<Loaded> loaded);
     void pollJob();
@@ -163,6 +208,18 @@ private:
     void onScroll(double steps);
     void onKey(int key, int action, int mods);
     void applyStroke(const sketch::Stroke& stroke);
+    // Posing.
+    void setPoseMode(bool on);
+    void applyPoseStroke(const sketch::Stroke& stroke);
+    void addPoseAction(const sketch::PoseAction& action, const std::string& what);
+    void addKeyframe();
+    void switchInterpretation();
+    void setTime(double seconds);
+    void togglePlay();
+    void advancePlayback(double now);
+    void poseChanged();
+    void showFrame();
+    void exportAnimation(const fs::path& path);
     void undo();
     void redo();
     void save(const fs::path& path);
@@ -174,9 +231,13 @@ private:
     void updateStrokeItems();
     void updateOverlay();
     void printGuides();
+    Mesh shapeHead() const;
     Mesh displayMesh() const;
+    Mesh contourFace() const;
+    bool showingTimeline() const;
     // Panels.
     void panels();
+    void timelinePanel();
     void say(const std::string& text);
 
     GuiCommand c_;
@@ -196,6 +257,7 @@ private:
     // Scene items.
     DrawId faceItem_ = 0, contourItem_ = 0, drawingItem_ = 0, flashItem_ = 0;
     std::vector<DrawId> strokeItems_, interpretedItems_;
+    DrawId fpItem_ = 0, hitItem_ = 0;
     bool haveItems_ = false;
     Curvature curvature_;
     ContourParams contourParams_;
@@ -219,6 +281,21 @@ private:
     std::optional<sketch::Session> recovery_;
     fs::path sessionArg_;
     std::uint64_t readyFrames_ = 0;
+
+    // Pose mode and the timeline.
+    bool poseMode_ = false;
+    bool alternative_ = false;
+    double time_ = 0; ///< the timeline's current time, s
+    double fps_ = 30; ///< playback and glTF export frame rate
+    bool playing_ = false, loop_ = true;
+    double lastTick_ = -1;
+    bool timelineShown_ = false;               ///< the face shows the timeline at time_ (else the current pose)
+    std::unique_ptr<pose::Timeline> timeline_; ///< through the keyframes in effect (two or more)
+    std::unique_ptr<pose::TimelinePlayer> player_;
+    Vertices frame_; ///< the timeline's face at the shown time
+    double frameTime_ = -1;
+    bool contoursStale_ = false; ///< hidden during playback, to be rebuilt when it stops
+    char glbPath_[512] = "timeline.glb";
     bool trace_ = std::getenv("FACESKETCH_GUI_TRACE") != nullptr; ///< print input events and frame times
 };
 
@@ -235,6 +312,10 @@ App::App(const GuiCommand& c)
         std::snprintf(sessionPath_, sizeof sessionPath_, "%s", c.sessionOut.c_str());
     if (!c.exportOut.empty())
         std::snprintf(exportPath_, sizeof exportPath_, "%s", c.exportOut.c_str());
+    if (!c.glbOut.empty())
+        std::snprintf(glbPath_, sizeof glbPath_, "%s", c.glbOut.c_str());
+    if (c.mode != "sketch" && c.mode != "pose")
+        fail("gui: --mode: 'sketch' or 'pose', not '", c.mode, "'");
     showOverlay_ = c.overlay;
 
     gui::WindowEvents events;
@@ -251,12 +332,16 @@ App::App(const GuiCommand& c)
         const auto [model, dataset] = sketch::sessionInputs(s, sessionArg_);
         if (c.sessionOut.empty())
             std::snprintf(sessionPath_, sizeof sessionPath_, "%s", sessionArg_.string().c_str());
-        startLoad(model, dataset, false);
+        // The session's own pose model unless --poses names another.
+        const fs::path poses = !c.poses.empty() ? fs::path(c.poses)
+            : s.poses.empty()                   ? fs::path()
+                                                : sketch::sessionPath(sessionArg_, s.poses);
+        startLoad(model, dataset, poses, false);
     } else if (c.inputs.size() == 2) {
-        startLoad(c.inputs[0], c.inputs[1], false);
+        startLoad(c.inputs[0], c.inputs[1], c.poses, false);
     } else if (c.inputs.empty()) {
         const fs::path folder = builtInFolder();
-        startLoad(folder / "faces.model", folder / "faces", true);
+        startLoad(folder / "faces.model", folder / "faces", c.poses.empty() ? folder / "faces.poses" : fs::path(c.poses), true);
     } else {
         fail("gui: give SESSION, or MODEL DATASET, or nothing (the built-in data); got ", c.inputs.size(), " arguments");
     }
@@ -269,17 +354,20 @@ App::~App()
     window_.waitIdle();
 }
 
-void App::startLoad(fs::path model, fs::path dataset, bool builtIn)
+void App::startLoad(fs::path model, fs::path dataset, fs::path poses, bool builtIn)
 {
     if (job_ && !job_->finished())
         return;
     std::snprintf(modelPath_, sizeof modelPath_, "%s", model.string().c_str());
     std::snprintf(datasetPath_, sizeof datasetPath_, "%s", dataset.string().c_str());
     job_ = std::make_unique<gui::Job>(builtIn ? "preparing the built-in data" : "loading " + dataset.filename().string(),
-        [this, model, dataset, builtIn](gui::Progress& p) {
-            if (builtIn)
+        [this, model, dataset, poses, builtIn](gui::Progress& p) {
+            if (builtIn) {
                 makeBuiltIn(model.parent_path(), p);
-            pending_ = load(model, dataset, p);
+                if (poses == model.parent_path() / "faces.poses")
+                    makeBuiltInPoses(model.parent_path(), p);
+            }
+            pending_ = load(model, dataset, poses, p);
         });
 }
 
@@ -287,13 +375,15 @@ void App::startTrain(fs::path dataset, fs::path model)
 {
     if (job_ && !job_->finished())
         return;
-    job_ = std::make_unique<gui::Job>("training a model on " + dataset.filename().string(), [this, model, dataset](gui::Progress& p) {
-        const dataset::Dataset ds = dataset::openDataset(dataset);
-        const stats::FaceModel m
-            = model::trainHeadModel(ds, {}, [&](const std::string& what, double f) { p.report(0.8 * f, "training: " + what); });
-        stats::saveFaceModel(m, model);
-        pending_ = load(model, dataset, p);
-    });
+    const fs::path poses = loaded_ ? loaded_->posesPath : fs::path();
+    job_
+        = std::make_unique<gui::Job>("training a model on " + dataset.filename().string(), [this, model, dataset, poses](gui::Progress& p) {
+              const dataset::Dataset ds = dataset::openDataset(dataset);
+              const stats::FaceModel m
+                  = model::trainHeadModel(ds, {}, [&](const std::string& what, double f) { p.report(0.8 * f, "training: " + what); });
+              stats::saveFaceModel(m, model);
+              pending_ = load(model, dataset, poses, p);
+          });
 }
 
 void App::pollJob()
@@ -326,9 +416,16 @@ void App::install(std::unique_ptr<Loaded> loaded)
     window_.waitIdle(); // the old items may be in flight
     scene_->clear();
     haveItems_ = false;
+    // The player refers to the timeline and the old pose model: both go before the data.
+    player_.reset();
+    timeline_.reset();
+    playing_ = false;
+    timelineShown_ = false;
     doc_.reset();
     loaded_ = std::move(loaded);
     doc_ = std::make_unique<gui::Document>(*loaded_->replayer, loaded_->model, loaded_->dataset);
+    if (loaded_->poseModel)
+        doc_->enablePosing(*loaded_->poseModel, loaded_->posesPath, [this] { return shapeHead(); });
     autosave_ = std::make_unique<gui::Autosave>(gui::recoveryFile(), c_.autosaveSeconds, doc_->revision());
 
     const Mesh mean = meanMesh(*loaded_->faceModel);
@@ -345,6 +442,8 @@ void App::install(std::unique_ptr<Loaded> loaded)
     contourItem_ = scene_->addLines({}, { { 0.08f, 0.08f, 0.1f, 1 } }, { 1.5f, true });
     drawingItem_ = scene_->addScreenPolyline({}, { { 0.85f, 0.1f, 0.1f, 1 } }, 2.0f);
     flashItem_ = scene_->addPoints({}, { { 0.1f, 0.8f, 0.2f, 1 } }, 6.0f);
+    fpItem_ = scene_->addPoints({}, { { 0.15f, 0.35f, 0.95f, 1 } }, 7.0f);
+    hitItem_ = scene_->addPoints({}, { { 0.95f, 0.45f, 0.05f, 1 } }, 10.0f);
     haveItems_ = true;
 
     if (!sessionArg_.empty()) {
@@ -354,9 +453,10 @@ void App::install(std::unique_ptr<Loaded> loaded)
         try {
             sketch::Session s = sketch::loadSession(autosave_->file());
             const auto [model, dataset] = sketch::sessionInputs(s, autosave_->file());
-            if (!s.actions.empty() && fs::equivalent(model, loaded_->model) && fs::equivalent(dataset, loaded_->dataset))
+            const bool any = !s.actions.empty() || !s.poseActions.empty();
+            if (any && fs::equivalent(model, loaded_->model) && fs::equivalent(dataset, loaded_->dataset))
                 recovery_ = std::move(s);
-            else if (!s.actions.empty())
+            else if (any)
                 say("a recovery session for other data is at " + autosave_->file().string());
         } catch (const std::exception& e) {
             say(std::string("the recovery file is unusable: ") + e.what());
@@ -367,7 +467,21 @@ void App::install(std::unique_ptr<Loaded> loaded)
             recovery_.reset();
             say("restored " + std::to_string(n) + " strokes from " + autosave_->file().string());
             std::cout << "gui: restored " << doc_->appliedCount() << " strokes from the recovery file" << std::endl;
+            if (doc_->poseAppliedCount() > 0)
+                std::cout << "gui: restored " << doc_->poseAppliedCount() << " pose actions from the recovery file" << std::endl;
         }
+    }
+    if (!doc_->posingEnabled())
+        poseMode_ = false; // new data without a pose model
+    if (c_.mode == "pose")
+        setPoseMode(true);
+    if (poseMode_ && c_.time >= 0) {
+        poseChanged();
+        setTime(c_.time);
+    }
+    if (poseMode_ && c_.play) {
+        poseChanged();
+        playing_ = timeline_ != nullptr;
     }
     faceChanged();
     viewDirty_ = true;
@@ -380,7 +494,42 @@ void App::say(const std::string& text)
     status_ = text;
 }
 
+bool App::showingTimeline() const
+{
+    return poseMode_ && timelineShown_ && player_ && frame_.rows() > 0;
+}
+
 Mesh App::displayMesh() const
+{
+    // In pose mode: the timeline's frame, or the current pose once a pose action is in effect.
+    if (poseMode_ && doc_->poseEditor()) {
+        Mesh mesh = doc_->poseEditor()->face();
+        if (showingTimeline())
+            mesh.V = frame_;
+        else if (doc_->poseAppliedCount() == 0)
+            return shapeHead();
+        return mesh;
+    }
+    return shapeHead();
+}
+
+Mesh App::contourFace() const
+{
+    const stats::FaceModel& m = *loaded_->faceModel;
+    if (!(poseMode_ && doc_->poseEditor() && (doc_->poseAppliedCount() > 0 || showingTimeline())))
+        return doc_->face();
+    // The skin of the posed head (model/head_assembly.h: skin vertex v is head vertex skinBegin + v).
+    const Mesh head = displayMesh();
+    const Eigen::Index skin = m.vertexCount();
+    if (m.head.vertexCount == 0 || head.V.rows() < m.head.skinBegin + skin)
+        return doc_->face();
+    Mesh face;
+    face.F = m.triangles;
+    face.V = head.V.middleRows(m.head.skinBegin, skin);
+    return face;
+}
+
+Mesh App::shapeHead() const
 {
     const stats::FaceModel& m = *loaded_->faceModel;
     const Eigen::VectorXd& face = loaded_->replayer->tracking().face();
@@ -459,6 +608,21 @@ void App::onKey(int key, int action, int mods)
         open(sessionPath_);
     } else if (ctrl && key == GLFW_KEY_E) {
         exportFace(exportPath_);
+    } else if (ctrl && key == GLFW_KEY_G) {
+        exportAnimation(glbPath_);
+    } else if (!ctrl && key == GLFW_KEY_TAB && action == GLFW_PRESS) {
+        setPoseMode(!poseMode_);
+    } else if (!ctrl && poseMode_ && (key == GLFW_KEY_LEFT || key == GLFW_KEY_RIGHT)) {
+        // One frame at the frame rate, on the frame grid.
+        setTime(std::max(0.0, (std::round(time_ * fps_) + (key == GLFW_KEY_RIGHT ? 1 : -1)) / fps_));
+    } else if (!ctrl && poseMode_ && (key == GLFW_KEY_UP || key == GLFW_KEY_DOWN)) {
+        setTime(std::max(0.0, time_ + (key == GLFW_KEY_UP ? 1.0 : -1.0)));
+    } else if (!ctrl && poseMode_ && key == GLFW_KEY_K && action == GLFW_PRESS) {
+        addKeyframe();
+    } else if (!ctrl && poseMode_ && key == GLFW_KEY_SPACE && action == GLFW_PRESS) {
+        togglePlay();
+    } else if (!ctrl && poseMode_ && key == GLFW_KEY_A && action == GLFW_PRESS) {
+        alternative_ = !alternative_;
     } else if (!ctrl && action == GLFW_PRESS) {
         const char preset = key == GLFW_KEY_1 || key == GLFW_KEY_KP_1 ? '1'
             : key == GLFW_KEY_3 || key == GLFW_KEY_KP_3               ? '3'
@@ -479,6 +643,10 @@ void App::onKey(int key, int action, int mods)
 
 void App::applyStroke(const sketch::Stroke& stroke)
 {
+    if (poseMode_) {
+        applyPoseStroke(stroke);
+        return;
+    }
     sketch::StrokeAction a;
     a.stroke = stroke;
     a.stroke.surface = static_cast<sketch::Surface>(surface_);
@@ -511,18 +679,259 @@ void App::applyStroke(const sketch::Stroke& stroke)
 void App::undo()
 {
     if (doc_->undo()) {
-        say("undone: " + std::to_string(doc_->appliedCount()) + " strokes in effect");
-        std::cout << "gui: undone, " << doc_->appliedCount() << " strokes in effect" << std::endl;
+        say("undone: " + std::to_string(doc_->appliedCount()) + " strokes, " + std::to_string(doc_->poseAppliedCount())
+            + " pose actions in effect");
+        std::cout << "gui: undone, " << doc_->appliedCount() << " strokes in effect, " << doc_->poseAppliedCount() << " pose actions"
+                  << std::endl;
+        timelineShown_ = false;
         faceChanged();
     }
 }
 
 void App::redo()
 {
-    if (doc_->redo()) {
-        say("redone: " + std::to_string(doc_->appliedCount()) + " strokes in effect");
-        std::cout << "gui: redone, " << doc_->appliedCount() << " strokes in effect" << std::endl;
-        faceChanged();
+    try {
+        if (!doc_->redo())
+            return;
+    } catch (const std::exception& e) {
+        say(std::string("not redone: ") + e.what());
+        return;
+    }
+    say("redone: " + std::to_string(doc_->appliedCount()) + " strokes, " + std::to_string(doc_->poseAppliedCount())
+        + " pose actions in effect");
+    std::cout << "gui: redone, " << doc_->appliedCount() << " strokes in effect, " << doc_->poseAppliedCount() << " pose actions"
+              << std::endl;
+    timelineShown_ = false;
+    faceChanged();
+}
+
+void App::setPoseMode(bool on)
+{
+    if (on == poseMode_)
+        return;
+    if (on) {
+        try {
+            doc_->preparePosing();
+        } catch (const std::exception& e) {
+            say(std::string("no pose mode: ") + e.what());
+            std::cout << "gui: no pose mode: " << e.what() << std::endl;
+            return;
+        }
+    }
+    poseMode_ = on;
+    playing_ = false;
+    std::cout << "gui: " << (on ? "pose" : "sketch") << " mode" << std::endl;
+    say(on ? "pose mode: strokes pose the face (Tab: back to sketching)" : "sketch mode");
+    faceChanged();
+}
+
+void App::addPoseAction(const sketch::PoseAction& action, const std::string& what)
+{
+    try {
+        doc_->addPoseAction(action);
+    } catch (const std::exception& e) {
+        say(what + " not applied: " + e.what());
+        std::cout << "gui: " << what << " not applied: " << e.what() << std::endl;
+        return;
+    }
+    faceChanged();
+}
+
+void App::applyPoseStroke(const sketch::Stroke& stroke)
+{
+    sketch::PoseAction a;
+    a.kind = sketch::PoseActionKind::Stroke;
+    a.stroke = stroke;
+    a.stroke.surface = sketch::Surface::Face; // cast onto the face as posed now (pose_session.h)
+    a.alternative = alternative_;
+    const size_t before = doc_->poseAppliedCount();
+    addPoseAction(a, "pose stroke");
+    if (doc_->poseAppliedCount() == before)
+        return;
+    timelineShown_ = false;
+    const pose::PoseEditor& e = *doc_->poseEditor();
+    std::ostringstream text;
+    text << "pose stroke: " << e.reading().fps.size() << " feature points (";
+    for (size_t i = 0; i < e.reading().fps.size(); ++i)
+        text << (i ? " " : "") << e.reading().fps[i].name;
+    text << "), " << (a.alternative ? "alternative" : "primary") << " interpretation, component " << e.component();
+    say(text.str());
+    std::cout << "gui: " << text.str() << std::endl;
+}
+
+void App::addKeyframe()
+{
+    if (!doc_->posingEnabled()) {
+        say("keyframes need a pose model (--poses)");
+        return;
+    }
+    sketch::PoseAction a;
+    a.kind = sketch::PoseActionKind::Keyframe;
+    // On the frame grid, so that playback and the glTF export meet the keyframe exactly.
+    a.time = std::round(time_ * fps_) / fps_;
+    const size_t before = doc_->poseAppliedCount();
+    addPoseAction(a, "keyframe");
+    if (doc_->poseAppliedCount() == before)
+        return;
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(3) << "keyframe at " << a.time << " s (" << doc_->poseEditor()->keyframes().size()
+         << " keyframes)";
+    say(text.str());
+    std::cout << "gui: " << text.str() << std::endl;
+}
+
+void App::switchInterpretation()
+{
+    // The last pose stroke read again with the other completion mixture (thesis figs. 5.10,
+    // 5.11): undo it and draw it again with the flag flipped, so both stay in the history.
+    const auto& actions = doc_->poseActions();
+    const size_t n = doc_->poseAppliedCount();
+    if (n == 0 || actions[n - 1].kind != sketch::PoseActionKind::Stroke) {
+        say("the last pose action is not a pose stroke");
+        return;
+    }
+    sketch::PoseAction a = actions[n - 1];
+    a.alternative = !a.alternative;
+    alternative_ = a.alternative;
+    doc_->undo();
+    try {
+        doc_->addPoseAction(a);
+        say(std::string("the last pose stroke now reads with the ") + (a.alternative ? "alternative" : "primary") + " interpretation");
+        std::cout << "gui: switched to the " << (a.alternative ? "alternative" : "primary") << " interpretation" << std::endl;
+    } catch (const std::exception& e) {
+        doc_->redo();
+        say(std::string("not switched: ") + e.what());
+    }
+    timelineShown_ = false;
+    faceChanged();
+}
+
+void App::setTime(double seconds)
+{
+    time_ = seconds;
+    playing_ = false;
+    timelineShown_ = timeline_ != nullptr;
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(3) << "time " << time_ << " s";
+    std::cout << "gui: " << text.str() << std::endl;
+    showFrame();
+}
+
+void App::togglePlay()
+{
+    if (!timeline_) {
+        say("the timeline needs two keyframes (K adds one at the current time)");
+        return;
+    }
+    playing_ = !playing_;
+    lastTick_ = -1;
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(3) << (playing_ ? "playing from " : "paused at ") << time_ << " s";
+    std::cout << "gui: " << text.str() << std::endl;
+    if (!playing_)
+        showFrame();
+}
+
+void App::advancePlayback(double now)
+{
+    if (!playing_ || !timeline_) {
+        lastTick_ = -1;
+        return;
+    }
+    if (lastTick_ >= 0)
+        time_ += now - lastTick_;
+    lastTick_ = now;
+    if (time_ < timeline_->begin())
+        time_ = timeline_->begin();
+    if (time_ > timeline_->end()) {
+        if (loop_) {
+            time_ = timeline_->begin() + std::fmod(time_ - timeline_->begin(), timeline_->end() - timeline_->begin());
+        } else {
+            time_ = timeline_->end();
+            playing_ = false;
+        }
+    }
+    timelineShown_ = true;
+    showFrame();
+}
+
+void App::showFrame()
+{
+    if (!player_ || !timelineShown_)
+        return;
+    // Played at the frame rate: the frame at or before time_, inside the timeline.
+    const double t = std::clamp(
+        timeline_->begin() + std::floor((time_ - timeline_->begin()) * fps_ + 1e-9) / fps_, timeline_->begin(), timeline_->end());
+    if (t == frameTime_ && frame_.rows() > 0)
+        return;
+    try {
+        player_->frame(t, frame_);
+        frameTime_ = t;
+    } catch (const std::exception& e) {
+        say(std::string("timeline: ") + e.what());
+        return;
+    }
+    scene_->updateMesh(faceItem_, frame_);
+    // While playing, the contours (curvature and the contour pass on the CPU, several times the
+    // rest of a frame at 6,000 vertices) are hidden and drawn again for the frame playback stops on.
+    if (playing_) {
+        scene_->setVisible(contourItem_, false);
+        contoursStale_ = true;
+        return;
+    }
+    curvature_ = estimateCurvature(contourFace());
+    viewDirty_ = true;
+    contoursStale_ = false;
+}
+
+void App::poseChanged()
+{
+    // The timeline through the keyframes in effect, and the points of the current pose.
+    player_.reset();
+    timeline_.reset();
+    frame_.resize(0, 3);
+    frameTime_ = -1;
+    const pose::PoseEditor* e = doc_->poseEditor();
+    if (e && doc_->poseAppliedCount() > 0 && e->keyframes().size() >= 2) {
+        timeline_ = std::make_unique<pose::Timeline>(e->timeline(doc_->tension()));
+        player_ = std::make_unique<pose::TimelinePlayer>(*loaded_->poseModel, *timeline_, e->neutral());
+    } else {
+        playing_ = false;
+        timelineShown_ = false;
+    }
+    std::vector<glm::vec3> fps, hits;
+    if (poseMode_ && e && doc_->poseAppliedCount() > 0) {
+        // Lifted 1 mm off the surface along its normal: points are depth tested, and a point on
+        // the surface would be half hidden by it.
+        const Vertices p = e->featurePointPositions();
+        const Vertices normals = vertexNormals(e->face());
+        const auto& fpVertex = loaded_->poseModel->fps.vertices;
+        auto lifted
+            = [&](const Eigen::Vector3d& x, int fp) { return toVec3(x + normals.row(fpVertex[static_cast<size_t>(fp)]).transpose()); };
+        for (Eigen::Index i = 0; i < p.rows(); ++i)
+            fps.push_back(lifted(p.row(i).transpose(), static_cast<int>(i)));
+        for (const pose::IdentifiedFp& fp : e->reading().fps)
+            hits.push_back(lifted(fp.position, fp.fp));
+    }
+    scene_->setPoints(fpItem_, fps, { { 0.15f, 0.35f, 0.95f, 1 } });
+    scene_->setPoints(hitItem_, hits, { { 0.95f, 0.45f, 0.05f, 1 } });
+}
+
+void App::exportAnimation(const fs::path& path)
+{
+    try {
+        if (!timeline_)
+            fail("the timeline needs two keyframes (K adds one at the current time)");
+        if (path.extension() != ".glb")
+            fail(path.string(), ": the animation is written as .glb, not '", path.extension().string(), "'");
+        const pose::PoseEditor& e = *doc_->poseEditor();
+        const std::vector<double> times = pose::frameTimes(*timeline_, fps_);
+        writeGlb(path, pose::timelineAnimation(*loaded_->poseModel, *timeline_, e.neutral(), times));
+        say("exported " + path.string());
+        std::cout << "gui: exported " << path.string() << " (" << times.size() << " frames at " << fps_ << " fps)" << std::endl;
+    } catch (const std::exception& e) {
+        say(std::string("not exported: ") + e.what());
+        std::cout << "gui: animation not exported: " << e.what() << std::endl;
     }
 }
 
@@ -532,7 +941,10 @@ void App::save(const fs::path& path)
         doc_->save(path);
         doc_->markSaved();
         say("saved " + path.string());
-        std::cout << "gui: saved " << path.string() << " (" << doc_->appliedCount() << " strokes)" << std::endl;
+        std::cout << "gui: saved " << path.string() << " (" << doc_->appliedCount() << " strokes)";
+        if (doc_->poseAppliedCount() > 0)
+            std::cout << " with " << doc_->poseAppliedCount() << " pose actions";
+        std::cout << std::endl;
     } catch (const std::exception& e) {
         say(std::string("not saved: ") + e.what());
     }
@@ -565,8 +977,10 @@ void App::exportFace(const fs::path& path)
 void App::faceChanged()
 {
     const Mesh face = doc_->face();
+    poseChanged();
+    showFrame();
     scene_->updateMesh(faceItem_, displayMesh().V);
-    curvature_ = estimateCurvature(face);
+    curvature_ = estimateCurvature(contourFace());
     if (!loaded_->data->trainNames.empty()) {
         const std::vector<Mesh> train(loaded_->data->candidateFaces.begin(),
             loaded_->data->candidateFaces.begin() + static_cast<long>(loaded_->data->trainNames.size()));
@@ -618,21 +1032,23 @@ void App::updateStrokeItems()
             drawn.push_back(toVec3(s.reading.worldPoints[k]));
         }
         scene_->setLines(strokeItems_[i], drawn, { { 0.85f, 0.1f, 0.1f, alpha } });
-        scene_->setVisible(strokeItems_[i], showStrokes_);
-        scene_->setVisible(interpretedItems_[i], showStrokes_);
+        // Shape strokes lie on the unposed face: hidden in pose mode.
+        scene_->setVisible(strokeItems_[i], showStrokes_ && !poseMode_);
+        scene_->setVisible(interpretedItems_[i], showStrokes_ && !poseMode_);
     }
 }
 
 void App::viewChanged()
 {
     const Camera camera = orbitCamera(nav_->view());
-    if (showContours_) {
-        const ContourLines lines = contourLines(doc_->face(), curvature_, camera, contourParams_, loaded_->data->flags);
+    // (curvature_ is of another face than the one shown while the contours are stale.)
+    if (showContours_ && !contoursStale_) {
+        const ContourLines lines = contourLines(contourFace(), curvature_, camera, contourParams_, loaded_->data->flags);
         std::vector<glm::vec3> all = lines.silhouette;
         all.insert(all.end(), lines.suggestive.begin(), lines.suggestive.end());
         scene_->setLines(contourItem_, all, { { 0.08f, 0.08f, 0.1f, 1 } });
     }
-    scene_->setVisible(contourItem_, showContours_);
+    scene_->setVisible(contourItem_, showContours_ && !contoursStale_);
     updateStrokeItems();
     overlayStale_ = true;
     overlayQuietFrames_ = 0;
@@ -656,7 +1072,7 @@ void App::printGuides()
     // For scripted input (tests/gui): where the upper lip and the nose profile of the current
     // face are in the window, in screen coordinates (GLFW's, what xdotool moves to).
     const Camera camera = orbitCamera(nav_->view());
-    const Mesh face = doc_->face();
+    const Mesh face = contourFace();
     const double s = window_.contentScale();
     auto print = [&](const std::string& name, const std::vector<int>& vertices) {
         std::cout << "guide " << name << " view " << nav_->view().angles.azimuthDeg << "," << nav_->view().angles.elevationDeg << ":";
@@ -695,13 +1111,38 @@ void App::panels()
     ImGui::SetNextWindowPos({ 10 * scale, 10 * scale }, ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize({ 330 * scale, 0 }, ImGuiCond_FirstUseEver);
     ImGui::Begin("Sketch");
-    static const char* mappers[] = { "nearest", "heuristic", "hmm (4.8)", "simple" };
-    ImGui::Combo("mapper", &mapper_, mappers, 4);
-    static const char* surfaces[] = { "face", "front plane", "profile plane", "paper" };
-    ImGui::Combo("projection", &surface_, surfaces, 4);
-    ImGui::Checkbox("correlation", &correlation_);
+    if (ImGui::RadioButton("sketch", !poseMode_))
+        setPoseMode(false);
     ImGui::SameLine();
-    ImGui::Checkbox("symmetry", &symmetry_);
+    ImGui::BeginDisabled(!doc_->posingEnabled());
+    if (ImGui::RadioButton("pose (Tab)", poseMode_))
+        setPoseMode(true);
+    ImGui::EndDisabled();
+    if (!doc_->posingEnabled()) {
+        ImGui::SameLine();
+        ImGui::TextDisabled("(no pose model: --poses)");
+    }
+    if (!poseMode_) {
+        static const char* mappers[] = { "nearest", "heuristic", "hmm (4.8)", "simple" };
+        ImGui::Combo("mapper", &mapper_, mappers, 4);
+        static const char* surfaces[] = { "face", "front plane", "profile plane", "paper" };
+        ImGui::Combo("projection", &surface_, surfaces, 4);
+        ImGui::Checkbox("correlation", &correlation_);
+        ImGui::SameLine();
+        ImGui::Checkbox("symmetry", &symmetry_);
+    } else {
+        ImGui::Checkbox("alternative interpretation (A)", &alternative_);
+        if (ImGui::Button("switch last stroke's"))
+            switchInterpretation();
+        ImGui::SameLine();
+        if (ImGui::Button("clear pose")) {
+            sketch::PoseAction a;
+            a.kind = sketch::PoseActionKind::Clear;
+            addPoseAction(a, "clear");
+        }
+        if (const pose::PoseEditor* e = doc_->poseEditor(); e && doc_->poseAppliedCount() > 0)
+            ImGui::Text("%zu FPs drawn (orange); completed (blue)", e->reading().fps.size());
+    }
     if (ImGui::Checkbox("contours (C)", &showContours_))
         viewDirty_ = true;
     ImGui::SameLine();
@@ -735,7 +1176,8 @@ void App::panels()
         redo();
     ImGui::EndDisabled();
     ImGui::SameLine();
-    ImGui::Text("%zu strokes%s", doc_->appliedCount(), doc_->revision() != doc_->savedRevision() ? " (unsaved)" : "");
+    ImGui::Text("%zu strokes, %zu pose actions%s", doc_->appliedCount(), doc_->poseAppliedCount(),
+        doc_->revision() != doc_->savedRevision() ? " (unsaved)" : "");
     ImGui::TextWrapped("%s", status_.c_str());
     if (!similar_.empty()) {
         ImGui::Separator();
@@ -753,9 +1195,17 @@ void App::panels()
     ImGui::InputText("face", exportPath_, sizeof exportPath_);
     if (ImGui::Button("export .ply/.obj (Ctrl+E)"))
         exportFace(exportPath_);
+    ImGui::InputText("animation", glbPath_, sizeof glbPath_);
+    ImGui::BeginDisabled(!timeline_);
+    if (ImGui::Button("export glTF animation .glb (Ctrl+G)"))
+        exportAnimation(glbPath_);
+    ImGui::EndDisabled();
     if (!autosave_->lastError().empty())
         ImGui::TextWrapped("autosave failed: %s", autosave_->lastError().c_str());
     ImGui::End();
+
+    if (poseMode_)
+        timelinePanel();
 
     ImGui::SetNextWindowPos({ 10 * scale, 560 * scale }, ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);
@@ -764,7 +1214,7 @@ void App::panels()
     ImGui::InputText("dataset", datasetPath_, sizeof datasetPath_);
     ImGui::BeginDisabled(job_ != nullptr);
     if (ImGui::Button("load"))
-        startLoad(modelPath_, datasetPath_, false);
+        startLoad(modelPath_, datasetPath_, loaded_ ? loaded_->posesPath : fs::path(), false);
     ImGui::SameLine();
     if (ImGui::Button("train model on dataset, then load"))
         startTrain(datasetPath_, modelPath_);
@@ -796,6 +1246,77 @@ void App::panels()
             }
             ImGui::EndPopup();
         }
+    }
+}
+
+void App::timelinePanel()
+{
+    const float scale = static_cast<float>(window_.contentScale());
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos({ 360 * scale, display.y - 150 * scale }, ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize({ std::max(display.x - 380 * scale, 300 * scale), 0 }, ImGuiCond_FirstUseEver);
+    ImGui::Begin("Timeline");
+    const pose::PoseEditor* e = doc_->poseEditor();
+    const std::vector<pose::Keyframe> none;
+    const std::vector<pose::Keyframe>& keys = e && doc_->poseAppliedCount() > 0 ? e->keyframes() : none;
+    double last = 0;
+    for (const pose::Keyframe& k : keys)
+        last = std::max(last, k.time);
+    float t = static_cast<float>(time_);
+    ImGui::SetNextItemWidth(-80 * scale);
+    if (ImGui::SliderFloat("time (s)", &t, 0.0f, static_cast<float>(std::max(last + 1.0, 2.0)), "%.3f"))
+        setTime(std::round(static_cast<double>(t) * fps_) / fps_);
+    // The keyframes as marks under the slider.
+    {
+        ImDrawList* draw = ImGui::GetWindowDrawList();
+        const ImVec2 p = ImGui::GetCursorScreenPos();
+        const float width = ImGui::GetContentRegionAvail().x - 80 * scale;
+        const float range = static_cast<float>(std::max(last + 1.0, 2.0));
+        for (const pose::Keyframe& k : keys) {
+            const float x = p.x + width * static_cast<float>(k.time) / range;
+            draw->AddTriangleFilled(
+                { x, p.y }, { x - 5 * scale, p.y + 9 * scale }, { x + 5 * scale, p.y + 9 * scale }, IM_COL32(240, 150, 20, 255));
+        }
+        const float x = p.x + width * static_cast<float>(time_) / range;
+        draw->AddLine({ x, p.y }, { x, p.y + 10 * scale }, IM_COL32(40, 90, 240, 255), 2 * scale);
+        ImGui::Dummy({ width, 11 * scale });
+    }
+    if (ImGui::Button("add keyframe (K)"))
+        addKeyframe();
+    ImGui::SameLine();
+    ImGui::BeginDisabled(!timeline_);
+    if (ImGui::Button(playing_ ? "pause (Space)" : "play (Space)"))
+        togglePlay();
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::Checkbox("loop", &loop_);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(110 * scale);
+    int rate = static_cast<int>(std::lround(fps_));
+    if (ImGui::InputInt("fps", &rate, 1, 10))
+        fps_ = std::clamp(rate, 1, 240), frameTime_ = -1;
+    ImGui::SameLine();
+    ImGui::Checkbox("show timeline", &timelineShown_);
+    if (!keys.empty()) {
+        ImGui::TextUnformatted("keyframes:");
+        for (size_t i = 0; i < keys.size(); ++i) {
+            ImGui::SameLine();
+            char label[32];
+            std::snprintf(label, sizeof label, "%.2f s##k%zu", keys[i].time, i);
+            if (ImGui::SmallButton(label))
+                setTime(keys[i].time);
+        }
+    } else {
+        ImGui::TextDisabled("no keyframes: pose the face with strokes, then K adds the pose at the current time");
+    }
+    ImGui::End();
+    if (timelineShown_)
+        showFrame();
+    else if (frameTime_ >= 0) {
+        frameTime_ = -1;
+        scene_->updateMesh(faceItem_, displayMesh().V);
+        curvature_ = estimateCurvature(contourFace());
+        viewDirty_ = true;
     }
 }
 
@@ -865,7 +1386,15 @@ void App::run()
                 for (const sketch::StrokePoint& p : pointer_.stroke().points)
                     drawing.push_back({ static_cast<float>(p.x), static_cast<float>(p.y) });
             scene_->setScreenPolyline(drawingItem_, drawing, { { 0.85f, 0.1f, 0.1f, 1 } });
-            scene_->setVisible(flashItem_, now < flashUntil_ && std::fmod(now * 8, 2.0) < 1.4);
+            scene_->setVisible(flashItem_, !poseMode_ && now < flashUntil_ && std::fmod(now * 8, 2.0) < 1.4);
+            advancePlayback(now);
+            if (!playing_ && contoursStale_) {
+                contoursStale_ = false;
+                curvature_ = estimateCurvature(contourFace());
+                viewDirty_ = true;
+            }
+            scene_->setVisible(fpItem_, poseMode_ && !showingTimeline());
+            scene_->setVisible(hitItem_, poseMode_ && !showingTimeline());
             autosave_->tick(*doc_, now);
         }
 
@@ -925,6 +1454,12 @@ void App::run()
         std::cout << "gui_frame_p95_ms_" << v << "v " << percentile(frameMs, 0.95) << "\n";
         std::cout << "gui_stroke_to_frame_ms_" << v << "v " << strokeToFrameMs.value_or(-1) << "\n";
     }
+    if (c_.play && doc_ && doc_->poseEditor()) {
+        // Frame times while the timeline plays (each frame: spline, mapping, contours, drawing).
+        const long v = doc_->poseEditor()->neutral().vertexCount();
+        std::cout << std::fixed << std::setprecision(2) << "gui_play_frame_ms_" << v << "v " << percentile(frameMs, 0.5) << "\n"
+                  << "gui_play_frame_p95_ms_" << v << "v " << percentile(frameMs, 0.95) << "\n";
+    }
 }
 
 } // namespace
@@ -940,6 +1475,13 @@ void addGuiCommand(CLI::App& root)
     cmd->add_option("inputs", c->inputs, "SESSION, or MODEL DATASET")->expected(0, 2);
     cmd->add_option("--session-out", c->sessionOut, "Where Ctrl+S saves the session");
     cmd->add_option("--export-out", c->exportOut, "Where Ctrl+E exports the face (.ply or .obj)");
+    cmd->add_option("--poses", c->poses,
+        "Pose model for pose mode (facesketch train-poses; default: the session's, or with no arguments the built-in one, "
+        "trained once into the cache)");
+    cmd->add_option("--glb-out", c->glbOut, "Where Ctrl+G exports the timeline as a glTF animation (.glb)");
+    cmd->add_option("--mode", c->mode, "Start in this mode: sketch or pose")->capture_default_str();
+    cmd->add_option("--time", c->time, "Pose mode: start showing the timeline at this time (s)")->check(CLI::NonNegativeNumber);
+    cmd->add_flag("--play", c->play, "Pose mode: start playing the timeline");
     cmd->add_option("--screenshot", c->screenshot, "Write the last frame (with the panels) to this PNG on quitting");
     cmd->add_option("--quit-after-frames", c->quitAfterFrames, "Quit after N frames with data loaded")->check(CLI::NonNegativeNumber);
     cmd->add_option("--bench-frames", c->benchFrames,

@@ -44,10 +44,13 @@ Document::Document(sketch::SessionReplayer& replayer, const std::filesystem::pat
 
 sketch::ReplayOutcome Document::addStroke(const sketch::StrokeAction& action)
 {
+    if (poseApplied_ > 0)
+        fail("the face is posed (", poseApplied_, " pose actions in effect): undo them to sketch its shape");
     sketch::ReplayOutcome out = replayer_.apply(action);
     if (out.kind != sketch::ReplayOutcome::Kind::Applied)
         return out;
     strokes_.resize(applied_);
+    poseActions_.clear(); // undone pose actions posed another neutral
     revisions_.resize(applied_ + 1);
     strokes_.push_back({ action, out.reading });
     ++applied_;
@@ -58,20 +61,81 @@ sketch::ReplayOutcome Document::addStroke(const sketch::StrokeAction& action)
 
 bool Document::undo()
 {
-    if (applied_ == 0 || !replayer_.undo())
-        return false;
-    --applied_;
-    revision_ = revisions_[applied_];
+    if (poseApplied_ > 0) {
+        if (!editor_ || !editor_->undo())
+            return false;
+        --poseApplied_;
+    } else {
+        if (applied_ == 0 || !replayer_.undo())
+            return false;
+        --applied_;
+    }
+    revision_ = revisions_[applied_ + poseApplied_];
     return true;
 }
 
 bool Document::redo()
 {
-    if (applied_ >= strokes_.size() || !replayer_.redo())
+    if (applied_ < strokes_.size()) {
+        if (!replayer_.redo())
+            return false;
+        ++applied_;
+    } else if (poseApplied_ < poseActions_.size()) {
+        // The editor may have been rebuilt for this neutral since the action was undone (its
+        // redo history is gone then); applying the action again gives the same state, since
+        // reading and completion are deterministic.
+        if (!editor_ || editorRevision_ != revisions_[applied_])
+            buildEditor();
+        if (!editor_->redo())
+            editor_->apply(poseActions_[poseApplied_]);
+        ++poseApplied_;
+    } else {
         return false;
-    ++applied_;
-    revision_ = revisions_[applied_];
+    }
+    revision_ = revisions_[applied_ + poseApplied_];
     return true;
+}
+
+void Document::enablePosing(const pose::PoseModel& model, const std::filesystem::path& path, std::function<Mesh()> neutral)
+{
+    poseModel_ = &model;
+    posesPath_ = absoluteNormal(path);
+    neutral_ = std::move(neutral);
+    editor_.reset();
+}
+
+void Document::buildEditor()
+{
+    if (!poseModel_)
+        fail("posing needs a pose model (start the app with --poses POSES.model, `facesketch train-poses`)");
+    Mesh neutral = neutral_();
+    // As the saved face file holds it (PLY float32), so that a replay of the saved session
+    // poses the very same numbers.
+    neutral.V = neutral.V.cast<float>().cast<double>();
+    pose::checkFace(*poseModel_, neutral, "the face to pose");
+    editor_ = std::make_unique<pose::PoseEditor>(*poseModel_, neutral);
+    editorRevision_ = revisions_[applied_];
+}
+
+void Document::preparePosing()
+{
+    if (!editor_ || (poseApplied_ == 0 && editorRevision_ != revisions_[applied_]))
+        buildEditor();
+}
+
+void Document::addPoseAction(const sketch::PoseAction& action)
+{
+    preparePosing();
+    sketch::PoseAction a = action;
+    a.afterStrokes = static_cast<int>(applied_);
+    editor_->apply(a);
+    strokes_.resize(applied_);
+    poseActions_.resize(poseApplied_);
+    revisions_.resize(applied_ + poseApplied_ + 1);
+    poseActions_.push_back(a);
+    ++poseApplied_;
+    revision_ = nextRevision_++;
+    revisions_.push_back(revision_);
 }
 
 sketch::Session Document::session() const
@@ -81,6 +145,10 @@ sketch::Session Document::session() const
     s.dataset = dataset_;
     for (size_t i = 0; i < applied_; ++i)
         s.actions.push_back(strokes_[i].action);
+    if (poseModel_)
+        s.poses = posesPath_;
+    s.tension = tension_;
+    s.poseActions.assign(poseActions_.begin(), poseActions_.begin() + static_cast<long>(poseApplied_));
     return s;
 }
 
@@ -90,6 +158,16 @@ void Document::save(const std::filesystem::path& path) const
     const std::filesystem::path folder = absoluteNormal(path).parent_path();
     s.model = relativeIfInside(model_, folder);
     s.dataset = relativeIfInside(dataset_, folder);
+    if (!s.poses.empty())
+        s.poses = relativeIfInside(posesPath_, folder);
+    if (!s.poseActions.empty() && editor_) {
+        // The face the pose actions pose, beside the session: `facesketch pose` and `animate`
+        // read it from the session's `face`. Written first, so that a session never names a
+        // face file that does not exist.
+        const std::filesystem::path face = path.parent_path() / (path.stem().string() + ".face.ply");
+        writeMesh(face, editor_->neutral());
+        s.face = face.filename();
+    }
     sketch::saveSession(path, s);
 }
 
@@ -108,7 +186,12 @@ int Document::load(const sketch::Session& session, const std::filesystem::path& 
         fail(where, ": dataset: drawn against ", dataset.string(), ", but the app has ", dataset_.string(), " open");
     // Back to no stroke, then the session's strokes; on an error, the strokes that were in
     // effect are replayed again (reading is deterministic, so the face is the same).
+    if (!session.poseActions.empty() && !poseModel_)
+        fail(where, ": ", session.poseActions.size(), " pose actions, but the app has no pose model (start it with --poses POSES.model)");
     const std::vector<DocumentStroke> before(strokes_.begin(), strokes_.begin() + static_cast<long>(applied_));
+    std::unique_ptr<pose::PoseEditor> editorBefore = std::move(editor_);
+    const std::uint64_t editorRevisionBefore = editorRevision_;
+    const std::vector<std::uint64_t> revisionsBefore = revisions_;
     while (replayer_.undo()) { }
     std::vector<DocumentStroke> loaded;
     int dropped = 0;
@@ -120,21 +203,48 @@ int Document::load(const sketch::Session& session, const std::filesystem::path& 
             else
                 ++dropped;
         }
+        if (!session.poseActions.empty()) {
+            // A fresh revision for the new neutral, so that the editor is built for it.
+            revisions_.assign(loaded.size() + 1, nextRevision_++);
+            applied_ = loaded.size();
+            buildEditor();
+            for (size_t i = 0; i < session.poseActions.size(); ++i) {
+                try {
+                    editor_->apply(session.poseActions[i]);
+                } catch (const Error& e) {
+                    fail(where, ": pose action ", i, ": ", e.what());
+                }
+            }
+        }
     } catch (...) {
         while (replayer_.undo()) { }
         for (const DocumentStroke& s : before)
             replayer_.apply(s.action);
         strokes_ = before;
         applied_ = before.size();
+        editor_ = std::move(editorBefore);
+        editorRevision_ = editorRevisionBefore;
+        revisions_ = revisionsBefore;
         throw;
     }
     // Opening is one action: undo returns to the state before it is not offered (the tracking
     // history restarts), so the strokes are simply replaced.
     strokes_ = std::move(loaded);
     applied_ = strokes_.size();
-    revisions_.assign(1, nextRevision_++);
-    for (size_t i = 0; i < applied_; ++i)
-        revisions_.push_back(nextRevision_++);
+    poseActions_ = session.poseActions;
+    poseApplied_ = poseActions_.size();
+    tension_ = session.tension;
+    if (poseActions_.empty()) {
+        revisions_.assign(1, nextRevision_++);
+        for (size_t i = 0; i < applied_; ++i)
+            revisions_.push_back(nextRevision_++);
+    } else {
+        // revisions_[applied_] is the editor's neutral, set above.
+        for (size_t i = 0; i < applied_; ++i)
+            revisions_[i] = nextRevision_++;
+        for (size_t i = 0; i < poseApplied_; ++i)
+            revisions_.push_back(nextRevision_++);
+    }
     revision_ = revisions_.back();
     return dropped;
 }
@@ -144,7 +254,10 @@ void Document::exportMesh(const std::filesystem::path& path) const
     const std::string ext = path.extension().string();
     if (ext != ".obj" && ext != ".ply")
         fail(path.string(), ": export writes .obj or .ply, not '", ext, "'");
-    writeMesh(path, face());
+    if (poseApplied_ > 0 && editor_)
+        writeMesh(path, editor_->face());
+    else
+        writeMesh(path, face());
 }
 
 std::filesystem::path recoveryFile()

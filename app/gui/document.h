@@ -7,12 +7,23 @@
 // Every action (a stroke, opening a session) can be undone and redone; undo and redo restore
 // the tracking model's stored state, so the face after undo is bit-identical to the face before
 // the undone action.
+//
+// Posing (issue 13, thesis 5.3-5.5). With a pose model (enablePosing), pose actions (pose strokes,
+// keyframes, clears) go through pose::PoseEditor, the code path of `facesketch pose` and
+// `animate`. They pose the head the shape strokes built (the neutral), so the history is the
+// shape strokes first, then the pose actions: a shape stroke is refused while a pose action is
+// in effect (undo them first), and a pose action forgets undone shape strokes. The neutral is
+// rounded to float32, as the face file a saved session names holds it (io/mesh_io.h PLY), so
+// `facesketch pose --session` replays the saved session to the app's posed face bit for bit.
 
+#include "pose/pose_session.h"
 #include "sketch/replay.h"
 #include "sketch/session.h"
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,12 +48,33 @@ public:
     /// why). Throws Error as SessionReplayer::apply does (nothing changed).
     sketch::ReplayOutcome addStroke(const sketch::StrokeAction& action);
 
-    /// Undoes the last stroke; false (nothing changed) if there is none.
+    /// Undoes the last action (pose action, else stroke); false (nothing changed) if there is none.
     bool undo();
-    /// Redoes the last undone stroke; false if there is none.
+    /// Redoes the last undone action (strokes before pose actions); false if there is none.
     bool redo();
-    bool canUndo() const { return applied_ > 0; }
-    bool canRedo() const { return applied_ < strokes_.size(); }
+    bool canUndo() const { return applied_ + poseApplied_ > 0; }
+    bool canRedo() const { return applied_ + poseApplied_ < strokes_.size() + poseActions_.size(); }
+
+    /// Allows pose actions: `model` (kept by reference, keep it alive; `path` is written into
+    /// saved sessions as `poses`) poses the mesh `neutral()` returns for the current shape face
+    /// (the whole head, #V by 3 mm, the pose model's topology).
+    void enablePosing(const pose::PoseModel& model, const std::filesystem::path& path, std::function<Mesh()> neutral);
+    bool posingEnabled() const { return poseModel_ != nullptr; }
+    /// Builds the pose editor for the current neutral if it has none yet. Throws Error if posing
+    /// is not enabled or the neutral does not fit the pose model (another topology).
+    void preparePosing();
+    /// Applies a pose action (its afterStrokes is set here) and forgets any undone actions.
+    /// Throws Error, nothing changed, if posing is not enabled or the editor refuses it (a stroke
+    /// that hits no feature point cluster, a keyframe time already used).
+    void addPoseAction(const sketch::PoseAction& action);
+    /// Every pose action drawn, including undone ones after poseAppliedCount().
+    const std::vector<sketch::PoseAction>& poseActions() const { return poseActions_; }
+    size_t poseAppliedCount() const { return poseApplied_; }
+    /// The pose editor (its face, reading, keyframes), or nullptr before the first pose action.
+    const pose::PoseEditor* poseEditor() const { return editor_.get(); }
+    const std::filesystem::path& posesPath() const { return posesPath_; }
+    /// The timeline's tension (session `tension`, kept from an opened session).
+    double tension() const { return tension_; }
 
     /// Every stroke drawn, including undone ones after appliedCount().
     const std::vector<DocumentStroke>& strokes() const { return strokes_; }
@@ -53,24 +85,30 @@ public:
     Mesh face() const { return replayer_.face(); }
     sketch::SessionReplayer& replayer() { return replayer_; }
 
-    /// The session of the strokes in effect, with absolute model and dataset paths.
+    /// The session of the strokes and pose actions in effect, with absolute model, dataset and
+    /// pose model paths (no face file: save() writes one).
     sketch::Session session() const;
 
     /// Writes the session atomically to `path`. The model and dataset paths are written relative
-    /// to the file's folder when they lie inside it, absolute otherwise. Throws Error naming the
-    /// file if it cannot be written.
+    /// to the file's folder when they lie inside it, absolute otherwise. With pose actions, the
+    /// neutral they pose is written beside it as <stem>.face.ply and named as the session's
+    /// `face`. Throws Error naming the file if it cannot be written.
     void save(const std::filesystem::path& path) const;
 
-    /// Replaces the strokes with those of the session file at `path`, replayed in order (strokes
-    /// that pin nothing or are refused are dropped, as `facesketch sketch` skips them). Throws
-    /// Error naming the file, before anything changes, if it cannot be read or was drawn against
-    /// another model or dataset; returns how many strokes were dropped.
+    /// Replaces the strokes and pose actions with those of the session file at `path`, replayed
+    /// in order (strokes that pin nothing or are refused are dropped, as `facesketch sketch`
+    /// skips them; the pose actions then pose the head of all its strokes, the session's own
+    /// `face` file is not read). Throws Error naming the file, before anything changes, if it
+    /// cannot be read, was drawn against another model or dataset, or has pose actions that the
+    /// app cannot replay (no pose model, a stroke that hits nothing); returns how many strokes
+    /// were dropped.
     int open(const std::filesystem::path& path);
     /// open() from a session in memory; `where` names it in errors.
     int load(const sketch::Session& session, const std::filesystem::path& sessionFile, const std::string& where);
 
-    /// Writes the current face as OBJ or PLY (by extension; atomic). Throws Error naming the
-    /// file for another extension.
+    /// Writes the current face as OBJ or PLY (by extension; atomic): the posed head when a pose
+    /// action is in effect, else the shape face. Throws Error naming the file for another
+    /// extension.
     void exportMesh(const std::filesystem::path& path) const;
 
     /// Changes with every change of the session (strokes in effect); for autosave and titles.
@@ -83,14 +121,26 @@ public:
     const std::filesystem::path& datasetPath() const { return dataset_; }
 
 private:
+    void buildEditor();
+    void replayPose(const std::vector<sketch::PoseAction>& actions);
+
     sketch::SessionReplayer& replayer_;
     std::filesystem::path model_, dataset_;
     std::vector<DocumentStroke> strokes_;
     size_t applied_ = 0;
+    const pose::PoseModel* poseModel_ = nullptr;
+    std::filesystem::path posesPath_;
+    std::function<Mesh()> neutral_;
+    std::unique_ptr<pose::PoseEditor> editor_;
+    // The shape revision the editor's neutral was built for.
+    std::uint64_t editorRevision_ = 0;
+    std::vector<sketch::PoseAction> poseActions_;
+    size_t poseApplied_ = 0;
+    double tension_ = 0;
     std::uint64_t revision_ = 0;
     std::uint64_t savedRevision_ = 0;
-    // Revisions of the states after 0..strokes_.size() strokes, so undoing back to a saved
-    // state is clean again.
+    // Revisions of the states after 0..strokes_.size() strokes and then 1..poseActions_.size()
+    // pose actions (index applied_ + poseApplied_), so undoing back to a saved state is clean.
     std::vector<std::uint64_t> revisions_ { 0 };
     std::uint64_t nextRevision_ = 1;
 };

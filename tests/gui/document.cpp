@@ -1,10 +1,12 @@
-// The app's document: strokes through the shared replayer, undo/redo, save/open, export,
-// autosave and the recovery file.
+// The app's document: strokes through the shared replayer, pose actions through the pose
+// editor, undo/redo, save/open, export, autosave and the recovery file.
 #include "gui/document.h"
 
 #include "core/error.h"
 #include "fixture.h"
 #include "io/mesh_io.h"
+#include "pose/pose_session.h"
+#include "pose_fixture.h"
 #include "sketch/simulate.h"
 #include "test_common.h"
 
@@ -121,6 +123,106 @@ TEST_CASE("document: a saved session opens to the identical strokes and face, wi
     REQUIRE(sketch::loadSession(elsewhere / "s.json").model == in.model);
     REQUIRE(other.open(elsewhere / "s.json") == 0);
     REQUIRE(other.face().V == doc.face().V);
+}
+
+namespace {
+
+sketch::PoseAction poseStroke(const std::string& pose, const std::string& contour)
+{
+    const auto& pw = test::poseWorld();
+    sketch::PoseAction a;
+    a.kind = sketch::PoseActionKind::Stroke;
+    a.stroke = test::traceStroke(pw.pose(pose), pw.topology.labels.contours.at(contour), pw.front);
+    return a;
+}
+
+sketch::PoseAction keyframe(double time)
+{
+    sketch::PoseAction a;
+    a.kind = sketch::PoseActionKind::Keyframe;
+    a.time = time;
+    return a;
+}
+
+} // namespace
+
+TEST_CASE("document: pose actions come after the strokes, undo and redo exactly, and a saved session replays in facesketch pose's editor")
+{
+    const auto& w = test::sketchWorld();
+    const auto& pw = test::poseWorld();
+    Inputs in;
+    sketch::SessionReplayer replayer(test::device(), w.model, w.candidateFaces, w.flags, {}, "model");
+    Document doc(replayer, in.model, in.dataset);
+    REQUIRE_THROWS_AS(doc.addPoseAction(keyframe(0)), Error); // no pose model yet
+    REQUIRE_FALSE(doc.canUndo());
+    const std::filesystem::path poses = in.dir / "p.poses";
+    std::ofstream(poses) << "x";
+    doc.enablePosing(pw.model, poses, [&] { return pw.neutral; });
+    addApplied(doc, 2);
+    doc.undo(); // an undone stroke, forgotten by the first pose action
+
+    doc.addPoseAction(keyframe(0));
+    REQUIRE(doc.appliedCount() == 1);
+    REQUIRE(doc.strokes().size() == 1);
+    const std::uint64_t r1 = doc.revision();
+    // The neutral as a face file holds it (float32).
+    REQUIRE(doc.poseEditor()->neutral().V == pw.neutral.V.cast<float>().cast<double>());
+    doc.addPoseAction(poseStroke("smile_open", "lip_upper_outer"));
+    const Vertices smiled = doc.poseEditor()->face().V;
+    REQUIRE((smiled - doc.poseEditor()->neutral().V).rowwise().norm().maxCoeff() > 1.0);
+    doc.addPoseAction(keyframe(1));
+    REQUIRE(doc.poseEditor()->keyframes().size() == 2);
+
+    // A shape stroke is refused while the face is posed, nothing changed.
+    const std::uint64_t r3 = doc.revision();
+    REQUIRE_THROWS_AS(doc.addStroke(actions().front()), Error);
+    REQUIRE(doc.revision() == r3);
+    REQUIRE(doc.poseAppliedCount() == 3);
+
+    // Undo pops the pose actions first, then the strokes; redo the other way round.
+    REQUIRE(doc.undo());
+    REQUIRE(doc.undo());
+    REQUIRE(doc.poseEditor()->face().V == doc.poseEditor()->neutral().V);
+    REQUIRE(doc.revision() == r1);
+    REQUIRE(doc.undo());
+    REQUIRE(doc.undo());
+    REQUIRE(doc.appliedCount() == 0);
+    REQUIRE_FALSE(doc.undo());
+    for (int i = 0; i < 4; ++i)
+        REQUIRE(doc.redo());
+    REQUIRE_FALSE(doc.redo());
+    REQUIRE(doc.poseEditor()->face().V == smiled);
+    REQUIRE(doc.revision() == r3);
+
+    // Saved: the session names the pose model and a face file; `facesketch pose` poses that file
+    // with the session's actions to the identical face, and the document opens it again.
+    const std::filesystem::path file = in.dir / "posed.json";
+    doc.save(file);
+    const sketch::Session onDisk = sketch::loadSession(file);
+    REQUIRE(onDisk.poses == "p.poses");
+    REQUIRE(onDisk.face == "posed.face.ply");
+    REQUIRE(onDisk.actions.size() == 1);
+    REQUIRE(onDisk.poseActions.size() == 3);
+    REQUIRE(onDisk.poseActions[1].afterStrokes == 1);
+    pose::PoseEditor cli(pw.model, readMesh(in.dir / "posed.face.ply"));
+    pose::replayPoseActions(cli, onDisk);
+    REQUIRE(cli.face().V == smiled);
+
+    sketch::SessionReplayer b(test::device(), w.model, w.candidateFaces, w.flags, {}, "model");
+    Document other(b, in.model, in.dataset);
+    REQUIRE_THROWS_AS(other.open(file), Error); // pose actions, but no pose model
+    REQUIRE(other.appliedCount() == 0);
+    other.enablePosing(pw.model, poses, [&] { return pw.neutral; });
+    REQUIRE(other.open(file) == 0);
+    REQUIRE(other.poseAppliedCount() == 3);
+    REQUIRE(other.poseEditor()->face().V == smiled);
+    REQUIRE(sketch::operator==(other.session(), doc.session()));
+    REQUIRE(other.undo());
+    REQUIRE(other.poseEditor()->keyframes().size() == 1);
+
+    // Export writes the posed face.
+    doc.exportMesh(in.dir / "posed.ply");
+    REQUIRE((readMesh(in.dir / "posed.ply").V - smiled).cwiseAbs().maxCoeff() < 1e-4);
 }
 
 TEST_CASE("document: a session of another model or a broken file is refused and changes nothing")
