@@ -24,6 +24,11 @@ const std::vector<Norm>& farkasNorms()
 
 namespace {
 
+double sq(double x)
+{
+    return x * x;
+}
+
 // One Farkas measure with the shared size factor g (see face_params.h).
 double normDraw(const Norm& n, bool female, double g, double z)
 {
@@ -104,7 +109,36 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
         b.height = 0.45 * rng.normal();
         p.detail.push_back(b);
     }
+
+    // Shape fields: symmetric ones share a factor per lattice row; antisymmetric ones are
+    // independent and smaller (faces are nearly symmetric).
+    double rowFactor[7];
+    for (double& u : rowFactor)
+        u = rng.normal();
+    constexpr double kSymmetricSd = 2.6, kAsymmetricSd = 0.9, kRowWeight = 0.5;
+    p.shapeModes.resize(kShapeFields);
+    for (int k = 0; k < kShapeFields; ++k) {
+        const double z = rng.normal();
+        p.shapeModes[static_cast<size_t>(k)]
+            = k < 28 ? kSymmetricSd * (kRowWeight * rowFactor[k / 4] + std::sqrt(1 - sq(kRowWeight)) * z) : kAsymmetricSd * z;
+    }
     return p;
+}
+
+double shapeField(int k, double theta, double phi)
+{
+    constexpr double kWidth = 0.2;
+    const bool symmetric = k < 28;
+    // Antisymmetric fields use the off-midline columns 1..3 of each row.
+    const int row = symmetric ? k / 4 : (k - 28) / 3;
+    const int col = symmetric ? k % 4 : 1 + (k - 28) % 3;
+    const double phiC = 0.55 - 0.25 * row, thetaC = 0.3 * col;
+    const double dPhi = sq(phi - phiC);
+    const double right = std::exp(-(sq(theta + thetaC) + dPhi) / sq(kWidth));
+    if (col == 0)
+        return right;
+    const double left = std::exp(-(sq(theta - thetaC) + dPhi) / sq(kWidth));
+    return symmetric ? left + right : left - right;
 }
 
 } // namespace facesketch::dataset
