@@ -109,6 +109,9 @@ struct FaceParams {
 /// side of an antisymmetric field).
 inline constexpr int kShapeFields = 49;
 double shapeField(int k, double theta, double phi);
+/// sum_k coefficients[k] * shapeField(k, theta, phi) over the first min(#coefficients, 49)
+/// fields, by separable factors (14 exponentials instead of 91): what the generator evaluates.
+double shapeFieldSum(const std::vector<double>& coefficients, double theta, double phi);
 
 /// The face of identity `index` in the population of `seed`: identity i's parameters depend
 /// only on (seed, i), so datasets of different sizes share their first faces.

@@ -150,9 +150,7 @@ double soft(const Frame& f, double theta0, double phi0, double X, double Y, int 
     // Shape fields, calmed over the lips and the nose: lip corners, vermilion borders and the
     // nose tip are placed by the parameters above, and a field's slope there would tip the
     // lips' rows past their corners or move the most forward point off prn.
-    double fields = 0;
-    for (size_t k = 0; k < p.shapeModes.size(); ++k)
-        fields += p.shapeModes[k] * shapeField(static_cast<int>(k), theta0, phi0);
+    const double fields = shapeFieldSum(p.shapeModes, theta0, phi0);
     const double lips = std::exp(-std::pow(X / (half + 6), 4) - std::pow(b / 12, 4));
     const double nose = std::exp(-std::pow(X / 16, 4) - std::pow((Y - f.yPrn - 6) / 22, 4));
     r += fields * (1 - 0.85 * std::max(lips, nose));
