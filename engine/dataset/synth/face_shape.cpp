@@ -147,15 +147,6 @@ double soft(const Frame& f, double theta0, double phi0, double X, double Y, int 
 
     for (const DetailBump& d : p.detail)
         r += d.height * std::exp(-(sq(theta0 - d.theta) + sq(phi0 - d.phi)) / sq(d.radius));
-    // Shape fields, calmed over the lips, the nose and the eyes: lip corners, vermilion
-    // borders, the nose tip and the eyeballs are placed by the parameters above, and a field's
-    // slope there would tip the lips' rows past their corners, move the most forward point off
-    // prn or shift the socket around its eyeball.
-    const double fields = shapeFieldSum(p.shapeModes, theta0, phi0);
-    const double lips = std::exp(-std::pow(X / (half + 6), 4) - std::pow(b / 12, 4));
-    const double nose = std::exp(-std::pow(X / 16, 4) - std::pow((Y - f.yPrn - 6) / 22, 4));
-    const double eyes = std::exp(-std::pow((ax - (p.enen + p.exex) / 4) / ((p.exex - p.enen) / 4 + 8), 4) - std::pow(Y / 14, 4));
-    r += fields * (1 - 0.85 * std::max({ lips, nose, eyes }));
     return r;
 }
 
