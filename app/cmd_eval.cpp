@@ -101,6 +101,7 @@ void addEvalCommand(CLI::App& root)
     addEvalContoursCommand(*eval);
     addEvalStrokesCommand(*eval);
     addEvalPosesCommand(*eval);
+    addEvalRealismCommand(*eval);
 }
 
 } // namespace facesketch::app

@@ -1,4 +1,4 @@
-// `facesketch preview`: a grid of a dataset's faces, front above profile, so a person can see at
+// `facesketch preview`: a grid of a dataset's faces, front above profile (and three-quarter with --three-quarter), so a person can see at
 // a glance what a synthetic or imported set looks like (any dataset; `synth --preview` adds the
 // generator's own lip and brow colouring).
 
@@ -28,6 +28,7 @@ glm::vec4 partColour(const std::string& component)
 struct PreviewOptions {
     std::string dataset, output;
     int count = 8, size = 320;
+    bool threeQuarter = false; ///< a third row: the three-quarter view (parseView("34"): azimuth 45 degrees)
 };
 
 void writeDatasetPreview(const PreviewOptions& o)
@@ -49,9 +50,10 @@ void writeDatasetPreview(const PreviewOptions& o)
         renderer.addMesh(mesh, {}, colours);
     };
     auto camera = [&](int view) {
-        return frameMesh(first, view ? ViewAngles { 90, 0 } : ViewAngles { 0, 0 }, o.size, o.size, Projection::Orthographic, 0.08);
+        const ViewAngles angles = view == 0 ? ViewAngles { 0, 0 } : view == 1 ? ViewAngles { 90, 0 } : parseView("34");
+        return frameMesh(first, angles, o.size, o.size, Projection::Orthographic, 0.08);
     };
-    writePreviewGrid(o.output, n, o.size, addFace, camera);
+    writePreviewGrid(o.output, n, o.size, addFace, camera, o.threeQuarter ? 3 : 2);
     std::cout << "wrote " << o.output << " (" << n << " faces of " << o.dataset << ")\n";
 }
 
@@ -67,6 +69,7 @@ void addPreviewCommand(CLI::App& root)
         ->capture_default_str()
         ->check(CLI::Range(1, 64));
     cmd->add_option("--size", o->size, "Pixels per cell")->capture_default_str()->check(CLI::Range(64, 2048));
+    cmd->add_flag("--three-quarter", o->threeQuarter, "Add a third row: the three-quarter view (azimuth 45 degrees, from the face's left)");
     cmd->callback([o] { writeDatasetPreview(*o); });
 }
 

@@ -38,6 +38,8 @@ void addEvalContoursCommand(CLI::App& eval);
 void addEvalStrokesCommand(CLI::App& eval);
 /// `facesketch eval poses` (cmd_eval_poses.cpp).
 void addEvalPosesCommand(CLI::App& eval);
+/// `facesketch eval realism` (cmd_eval_realism.cpp).
+void addEvalRealismCommand(CLI::App& eval);
 
 /// What `facesketch contours` draws (also used by `facesketch demo`).
 struct ContourPictureOptions {

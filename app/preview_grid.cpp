@@ -8,12 +8,12 @@
 namespace facesketch::app {
 
 void writePreviewGrid(const std::string& path, int count, int cell, const std::function<void(Renderer& renderer, int face)>& addFace,
-    const std::function<Camera(int view)>& camera)
+    const std::function<Camera(int view)>& camera, int views)
 {
     const int columns = std::min(count, 8), rows = (count + columns - 1) / columns;
     Image grid;
     grid.width = columns * cell;
-    grid.height = rows * 2 * cell;
+    grid.height = rows * views * cell;
     grid.pixels.assign(static_cast<size_t>(grid.width) * grid.height * 4, 255);
     {
         gpu::ScopedDevice device;
@@ -21,9 +21,9 @@ void writePreviewGrid(const std::string& path, int count, int cell, const std::f
         for (int i = 0; i < count; ++i) {
             renderer.clear();
             addFace(renderer, i);
-            for (int view = 0; view < 2; ++view) {
+            for (int view = 0; view < views; ++view) {
                 const Image image = renderer.render(camera(view));
-                const int x0 = (i % columns) * cell, y0 = ((i / columns) * 2 + view) * cell;
+                const int x0 = (i % columns) * cell, y0 = ((i / columns) * views + view) * cell;
                 for (int y = 0; y < cell; ++y)
                     std::copy_n(image.at(0, y), 4 * cell, grid.at(x0, y0 + y));
             }

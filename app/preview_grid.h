@@ -12,11 +12,11 @@
 namespace facesketch::app {
 
 /// Writes a PNG of `count` faces (count >= 1) in cells of `cell` x `cell` pixels:
-/// min(count, 8) columns, 2 * ceil(count / columns) rows of cells. For face i the renderer is
-/// cleared, `addFace(renderer, i)` adds its meshes, and it is drawn with `camera(0)` (front)
-/// into the upper cell and `camera(1)` (profile) into the lower one. The device is headless
-/// (gpu::ScopedDevice). Throws Error if the PNG cannot be written.
+/// min(count, 8) columns, views * ceil(count / columns) rows of cells. For face i the renderer
+/// is cleared, `addFace(renderer, i)` adds its meshes, and it is drawn with `camera(0)` (front)
+/// into the upper cell, `camera(1)` (profile) below it, and so on for `views` (>= 1) cameras.
+/// The device is headless (gpu::ScopedDevice). Throws Error if the PNG cannot be written.
 void writePreviewGrid(const std::string& path, int count, int cell, const std::function<void(Renderer& renderer, int face)>& addFace,
-    const std::function<Camera(int view)>& camera);
+    const std::function<Camera(int view)>& camera, int views = 2);
 
 } // namespace facesketch::app

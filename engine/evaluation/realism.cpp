@@ -1,0 +1,312 @@
+#include "evaluation/realism.h"
+
+#include "core/error.h"
+#include "geometry/similarity.h"
+#include "registration/surface_query.h"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace facesketch::evaluation {
+
+namespace {
+
+const char* const kRegions[] = { "eyes", "brows", "nose", "mouth", "chin" };
+
+double unitScale(const std::string& units, const std::string& where)
+{
+    if (units == "mm")
+        return 1.0;
+    if (units == "cm")
+        return 10.0;
+    if (units == "m")
+        return 1000.0;
+    fail(where, ": units '", units, "' are not mm, cm or m");
+}
+
+void requireUsable(const FaceSet& set)
+{
+    if (set.shapes.rows() < 2)
+        fail(set.name, ": ", set.shapes.rows(), " samples; the realism measures need at least 2");
+    if (set.triangles.rows() == 0)
+        fail(set.name, ": the skin has no triangle");
+    if (set.shapes.cols() % 3 != 0)
+        fail(set.name, ": shapes have ", set.shapes.cols(), " columns, not a multiple of 3");
+    const Eigen::Index n = set.shapes.cols() / 3;
+    if (set.triangles.size() > 0 && (set.triangles.minCoeff() < 0 || set.triangles.maxCoeff() >= n))
+        fail(set.name, ": a triangle's vertex is outside [0, ", n, ")");
+    for (Eigen::Index r = 0; r < set.shapes.rows(); ++r)
+        for (Eigen::Index c = 0; c < set.shapes.cols(); ++c)
+            if (!std::isfinite(set.shapes(r, c)))
+                fail(set.name, ": sample ", r, " vertex ", c / 3, " has a non-finite coordinate (", set.shapes(r, c), ")");
+    for (const auto& [name, v] : set.landmarks)
+        if (v < 0 || v >= n)
+            fail(set.name, ": landmark ", name, ": vertex ", v, " outside the skin [0, ", n, ")");
+}
+
+Vertices meanFace(const FaceSet& set)
+{
+    const Eigen::RowVectorXd mean = set.shapes.colwise().mean();
+    return dataset::unflatten(mean);
+}
+
+// Every vertex's nearest central landmark within `radius` (its index into `points`), or -1.
+std::vector<int> centralOwner(const Vertices& V, const Vertices& points, double radius)
+{
+    std::vector<int> owner(static_cast<size_t>(V.rows()), -1);
+    for (Eigen::Index v = 0; v < V.rows(); ++v) {
+        double best = radius * radius;
+        for (Eigen::Index k = 0; k < points.rows(); ++k) {
+            const double d2 = (V.row(v) - points.row(k)).squaredNorm();
+            if (d2 <= best) {
+                best = d2;
+                owner[static_cast<size_t>(v)] = static_cast<int>(k);
+            }
+        }
+    }
+    return owner;
+}
+
+struct Sample {
+    double distance, weight;
+    int group; // index into kRegions
+};
+
+SurfaceDistance summarise(const std::string& region, std::vector<Sample> samples)
+{
+    SurfaceDistance s;
+    s.region = region;
+    std::sort(samples.begin(), samples.end(), [](const Sample& a, const Sample& b) { return a.distance < b.distance; });
+    double sum2 = 0;
+    for (const Sample& x : samples) {
+        s.area += x.weight;
+        sum2 += x.weight * x.distance * x.distance;
+        s.max = std::max(s.max, x.distance);
+    }
+    if (s.area <= 0)
+        return s;
+    s.rms = std::sqrt(sum2 / s.area);
+    double below = 0;
+    for (const Sample& x : samples) {
+        below += x.weight;
+        if (below >= 0.95 * s.area) {
+            s.p95 = x.distance;
+            break;
+        }
+    }
+    return s;
+}
+
+// Distances from the central vertices of `from` to the skin of `to`, appended to `out`;
+// returns the uncovered area.
+double measure(const Vertices& from, const Triangles& fromF, const std::vector<int>& owner, const std::vector<int>& ownerGroup,
+    const registration::SurfaceQuery& to, std::vector<Sample>& out)
+{
+    const Eigen::VectorXd area = vertexAreas(from, fromF);
+    double uncovered = 0;
+    for (Eigen::Index v = 0; v < from.rows(); ++v) {
+        const int o = owner[static_cast<size_t>(v)];
+        if (o < 0 || area(v) <= 0)
+            continue;
+        const registration::ClosestPoint c = to.closest(from.row(v).transpose());
+        if (c.onBoundary)
+            uncovered += area(v);
+        out.push_back({ c.distance, area(v), ownerGroup[static_cast<size_t>(o)] });
+    }
+    return uncovered;
+}
+
+Spectrum centralSpectrum(const FaceSet& set, const std::vector<int>& owner)
+{
+    std::vector<Eigen::Index> keep;
+    for (size_t v = 0; v < owner.size(); ++v)
+        if (owner[v] >= 0)
+            keep.push_back(static_cast<Eigen::Index>(v));
+    if (keep.empty())
+        fail(set.name, ": no skin vertex lies in the central face region");
+    const Eigen::VectorXd area = vertexAreas(meanFace(set), set.triangles);
+    Eigen::MatrixXd sub(set.shapes.rows(), 3 * static_cast<Eigen::Index>(keep.size()));
+    Eigen::VectorXd w(static_cast<Eigen::Index>(keep.size()));
+    for (size_t k = 0; k < keep.size(); ++k) {
+        sub.middleCols(3 * static_cast<Eigen::Index>(k), 3) = set.shapes.middleCols(3 * keep[k], 3);
+        w(static_cast<Eigen::Index>(k)) = area(keep[k]);
+    }
+    return shapeSpectrum(sub, w);
+}
+
+} // namespace
+
+std::string landmarkGroup(const std::string& landmark)
+{
+    std::string base = landmark;
+    if (base.size() > 2 && (base.compare(base.size() - 2, 2, "_l") == 0 || base.compare(base.size() - 2, 2, "_r") == 0))
+        base.resize(base.size() - 2);
+    static const std::map<std::string, std::string> groups = { { "en", "eyes" }, { "ex", "eyes" }, { "ps", "eyes" }, { "pi", "eyes" },
+        { "os", "brows" }, { "mf", "brows" }, { "g", "brows" }, { "n", "nose" }, { "s", "nose" }, { "cs1", "nose" }, { "prn", "nose" },
+        { "sn", "nose" }, { "al", "nose" }, { "sbal", "nose" }, { "ls", "mouth" }, { "sto", "mouth" }, { "li", "mouth" }, { "ch", "mouth" },
+        { "cph", "mouth" }, { "sl", "chin" }, { "pg", "chin" }, { "gn", "chin" } };
+    const auto it = groups.find(base);
+    return it == groups.end() ? std::string() : it->second;
+}
+
+FaceSet loadFaceSet(const dataset::Dataset& ds)
+{
+    const std::string where = ds.folder.string();
+    const dataset::Manifest& m = ds.manifest;
+    const dataset::Component* skin = m.component("skin");
+    if (!skin)
+        fail(where, ": components: no skin");
+    FaceSet set;
+    set.name = where;
+    std::vector<Eigen::MatrixXd> parts;
+    Eigen::Index rows = 0;
+    for (dataset::Role role : { dataset::Role::Train, dataset::Role::Contour, dataset::Role::Test }) {
+        parts.push_back(dataset::loadShapes(ds, role, "skin"));
+        rows += parts.back().rows();
+    }
+    set.shapes.resize(rows, 3 * skin->size());
+    Eigen::Index r = 0;
+    for (const Eigen::MatrixXd& p : parts) {
+        set.shapes.middleRows(r, p.rows()) = p;
+        r += p.rows();
+    }
+    set.shapes *= unitScale(m.units, where + "/manifest.json");
+    if (set.shapes.rows() < 2)
+        fail(where, ": ", set.shapes.rows(), " samples; the realism measures need at least 2");
+
+    std::vector<Eigen::Index> kept;
+    for (Eigen::Index f = 0; f < m.topology.rows(); ++f)
+        if (skin->contains(m.topology(f, 0)) && skin->contains(m.topology(f, 1)) && skin->contains(m.topology(f, 2)))
+            kept.push_back(f);
+    set.triangles.resize(static_cast<Eigen::Index>(kept.size()), 3);
+    for (size_t k = 0; k < kept.size(); ++k)
+        set.triangles.row(static_cast<Eigen::Index>(k)) = m.topology.row(kept[k]).array() - skin->begin;
+    for (const auto& [name, v] : m.landmarks)
+        if (skin->contains(v))
+            set.landmarks[name] = v - skin->begin;
+    return set;
+}
+
+Eigen::VectorXd vertexAreas(const Vertices& V, const Triangles& F)
+{
+    Eigen::VectorXd area = Eigen::VectorXd::Zero(V.rows());
+    for (Eigen::Index f = 0; f < F.rows(); ++f) {
+        const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+        const double third = (b - a).cross(c - a).norm() / 6.0;
+        for (int k = 0; k < 3; ++k)
+            area(F(f, k)) += third;
+    }
+    return area;
+}
+
+Spectrum shapeSpectrum(const Eigen::MatrixXd& shapes, const Eigen::VectorXd& weights)
+{
+    if (shapes.rows() < 2)
+        fail("shape spectrum: ", shapes.rows(), " samples; at least 2 are needed");
+    if (weights.size() != 0 && 3 * weights.size() != shapes.cols())
+        fail("shape spectrum: ", weights.size(), " weights for ", shapes.cols() / 3, " vertices");
+    if (weights.size() != 0 && !(weights.minCoeff() >= 0))
+        fail("shape spectrum: a weight is negative or NaN (", weights.minCoeff(), ")");
+    Eigen::MatrixXd X = shapes.rowwise() - shapes.colwise().mean();
+    if (weights.size() != 0)
+        for (Eigen::Index v = 0; v < weights.size(); ++v)
+            X.middleCols(3 * v, 3) *= std::sqrt(weights(v));
+    // The SVD of the centred samples-by-3#V matrix: at most #samples non-zero singular values,
+    // never a 3#V square covariance.
+    const Eigen::BDCSVD<Eigen::MatrixXd> svd(X);
+    const Eigen::VectorXd& sigma = svd.singularValues();
+    Spectrum s;
+    s.samples = static_cast<int>(shapes.rows());
+    s.dimensions = static_cast<int>(shapes.cols());
+    const double n1 = static_cast<double>(shapes.rows() - 1);
+    for (Eigen::Index k = 0; k < sigma.size(); ++k)
+        s.variances.push_back(sigma(k) * sigma(k) / n1);
+    for (double v : s.variances)
+        s.totalVariance += v;
+    const auto count = [&](double fraction) {
+        double sum = 0;
+        for (size_t k = 0; k < s.variances.size(); ++k) {
+            sum += s.variances[k];
+            if (sum >= fraction * s.totalVariance)
+                return static_cast<int>(k + 1);
+        }
+        return static_cast<int>(s.variances.size());
+    };
+    s.modes90 = count(0.90);
+    s.modes95 = count(0.95);
+    s.modes99 = count(0.99);
+    return s;
+}
+
+RealismReport evaluateRealism(const FaceSet& data, const FaceSet& reference, const RealismOptions& options)
+{
+    requireUsable(data);
+    requireUsable(reference);
+    if (!(options.regionRadius > 0))
+        fail("eval realism: region radius ", options.regionRadius, " mm is not positive");
+
+    RealismReport report;
+    std::vector<int> groupOf; // per shared landmark, index into kRegions
+    for (const auto& [name, v] : data.landmarks) {
+        const std::string g = landmarkGroup(name);
+        if (g.empty() || !reference.landmarks.count(name))
+            continue;
+        report.landmarks.push_back(name);
+        groupOf.push_back(static_cast<int>(std::find(std::begin(kRegions), std::end(kRegions), g) - std::begin(kRegions)));
+    }
+    if (report.landmarks.size() < 4) {
+        std::string shared;
+        for (const std::string& l : report.landmarks)
+            shared += (shared.empty() ? "" : ", ") + l;
+        fail(data.name, " and ", reference.name, ": ", report.landmarks.size(), " shared central landmarks (",
+            shared.empty() ? "none" : shared, "); the alignment needs at least 4");
+    }
+
+    const Vertices dataMean = meanFace(data), refMean = meanFace(reference);
+    const auto n = static_cast<Eigen::Index>(report.landmarks.size());
+    Vertices from(n, 3), to(n, 3);
+    for (Eigen::Index k = 0; k < n; ++k) {
+        const std::string& l = report.landmarks[static_cast<size_t>(k)];
+        from.row(k) = dataMean.row(data.landmarks.at(l));
+        to.row(k) = refMean.row(reference.landmarks.at(l));
+    }
+    const Similarity sim = fitSimilarity(from, to);
+    report.alignmentScale = sim.scale;
+    report.landmarkRms = std::sqrt((sim.apply(from) - to).rowwise().squaredNorm().mean());
+
+    const Vertices dataAligned = sim.apply(dataMean);
+    const std::vector<int> dataOwner = centralOwner(dataAligned, to, options.regionRadius);
+    const std::vector<int> refOwner = centralOwner(refMean, to, options.regionRadius);
+
+    const registration::SurfaceQuery dataSurface(Mesh { dataAligned, data.triangles });
+    const registration::SurfaceQuery refSurface(Mesh { refMean, reference.triangles });
+    std::vector<Sample> all;
+    report.dataUncovered = measure(dataAligned, data.triangles, dataOwner, groupOf, refSurface, all);
+    for (const Sample& s : all)
+        report.dataArea += s.weight;
+    const size_t dataCount = all.size();
+    report.referenceUncovered = measure(refMean, reference.triangles, refOwner, groupOf, dataSurface, all);
+    for (size_t k = dataCount; k < all.size(); ++k)
+        report.referenceArea += all[k].weight;
+
+    report.distances.push_back(summarise("all", all));
+    for (int g = 0; g < static_cast<int>(std::size(kRegions)); ++g) {
+        std::vector<Sample> part;
+        for (const Sample& s : all)
+            if (s.group == g)
+                part.push_back(s);
+        if (!part.empty())
+            report.distances.push_back(summarise(kRegions[g], std::move(part)));
+    }
+
+    report.dataSkin = shapeSpectrum(data.shapes);
+    report.referenceSkin = shapeSpectrum(reference.shapes);
+    report.dataCentral = centralSpectrum(data, dataOwner);
+    report.referenceCentral = centralSpectrum(reference, refOwner);
+    return report;
+}
+
+} // namespace facesketch::evaluation

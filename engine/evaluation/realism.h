@@ -1,0 +1,115 @@
+#pragma once
+// `facesketch eval realism DATASET --reference REF` (issue 16): how far the faces of one dataset
+// are from those of another, usually real faces (an ICT import), in two figures: where the mean
+// face sits, and how many independent directions the faces vary along.
+//
+// Mean face distance. The mean face of each set (the mean of its samples' skin, every role) is
+// taken; the data's mean is moved onto the reference's by the least-squares similarity
+// (rotation, uniform scale, translation; Umeyama 1991, geometry/similarity.h, in double) on
+// their shared *central landmarks*: the landmarks of the groups below that both manifests
+// label (obs_l/_r are left out: the generator approximates them at its mask's edge, so they
+// are not the same point on both). At least 4 are needed. The *central face region* is the
+// part of each surface within `regionRadius` (25 mm) of the reference mean's central
+// landmarks, both surfaces in the reference's frame. Distances are **nearest-surface**
+// distances (point to triangle, registration/surface_query.h), not distances between
+// corresponding landmarks or vertices (the two sets need not share a topology): every central
+// vertex of the data's mean to the reference mean's skin, and every central vertex of the
+// reference's mean to the data mean's skin. Both directions are pooled, each vertex weighted
+// by its area (a third of its triangles' areas), so the figure is a surface integral that does
+// not depend on either mesh's resolution: RMS = sqrt(sum w d^2 / sum w), and the 95th
+// percentile is the smallest d with at least 95% of the weight at or below it. A vertex whose
+// nearest point is on the other skin's boundary edge is beside that skin rather than over it
+// (the other mask does not reach there); its area is reported as `uncovered`.
+//
+// Regions. Each central vertex belongs to the group of its nearest central landmark (in the
+// reference's frame), so the groups split the central region:
+//   eyes   en, ex, ps, pi         brows  os, mf, g
+//   nose   n, s, cs1, prn, sn, al, sbal
+//   mouth  ls, sto, li, ch, cph   chin   sl, pg, gn
+// (_l and _r for paired names, docs/dataset-format.md).
+//
+// Spectrum. The number of principal components that hold 90, 95 and 99% of a set's shape
+// variance, from the singular values of the centred data matrix (samples by 3#V; never the
+// 3#V by 3#V covariance). Coordinates are as stored (no per-face alignment: the face model,
+// stats/face_model.h, learns them so). Two versions: `skin` over every skin vertex unweighted
+// (what the face model sees) and `central` over the central region's vertices, each weighted
+// by the square root of its area so the inner product of two faces approximates the surface
+// integral and the count does not depend on the mesh's resolution.
+//
+// Units: everything in mm (a manifest in cm or m is scaled on loading).
+
+#include "core/mesh.h"
+#include "dataset/dataset.h"
+
+#include <Eigen/Core>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace facesketch::evaluation {
+
+/// The skin of every sample of one dataset, in mm.
+struct FaceSet {
+    std::string name;                     ///< for messages (the dataset folder)
+    Triangles triangles;                  ///< #F by 3, into the skin's vertices (0-based)
+    std::map<std::string, int> landmarks; ///< name -> skin vertex
+    Eigen::MatrixXd shapes;               ///< #samples by 3#V, rows (x0, y0, z0, x1, ...), mm
+};
+
+/// The skin component of every sample of `dataset` (train, contour, test, in manifest order),
+/// triangles with all three corners in the skin, landmarks on the skin; scaled to mm. Throws
+/// Error naming the folder if it has fewer than 2 samples.
+FaceSet loadFaceSet(const dataset::Dataset& dataset);
+
+struct RealismOptions {
+    double regionRadius = 25.0; ///< mm around the central landmarks
+};
+
+/// Nearest-surface distances over one part of the central region, both directions pooled.
+struct SurfaceDistance {
+    std::string region; ///< "all", "eyes", "brows", "nose", "mouth", "chin"
+    double area = 0.0;  ///< mm^2 of both surfaces together
+    double rms = 0.0;   ///< mm, area-weighted
+    double p95 = 0.0;   ///< mm, area-weighted 95th percentile
+    double max = 0.0;   ///< mm
+};
+
+/// The PCA spectrum of one set.
+struct Spectrum {
+    int samples = 0;
+    int dimensions = 0;            ///< columns of the data matrix (3 x vertices used)
+    double totalVariance = 0.0;    ///< sum of squared singular values / (samples - 1), mm^2 (area-weighted: mm^4)
+    std::vector<double> variances; ///< per mode, descending, same units
+    int modes90 = 0, modes95 = 0, modes99 = 0;
+};
+
+struct RealismReport {
+    std::vector<std::string> landmarks;         ///< the shared central landmarks the alignment used
+    double alignmentScale = 1.0;                ///< the similarity's scale, data to reference
+    double landmarkRms = 0.0;                   ///< mm, RMS distance of the aligned landmark pairs
+    double dataArea = 0.0, referenceArea = 0.0; ///< mm^2 of each central region (reference frame)
+    double dataUncovered = 0.0;                 ///< mm^2 of the data's central region off the reference skin
+    double referenceUncovered = 0.0;            ///< and the reverse
+    std::vector<SurfaceDistance> distances;     ///< "all" first, then each region with area
+    Spectrum dataSkin, dataCentral, referenceSkin, referenceCentral;
+};
+
+/// The measures above, `data` against `reference`. Throws Error naming both sets if they share
+/// fewer than 4 central landmarks or either has a non-finite coordinate, and naming the set
+/// with fewer than 2 samples or no triangle.
+RealismReport evaluateRealism(const FaceSet& data, const FaceSet& reference, const RealismOptions& options = {});
+
+/// The spectrum of `shapes` (#samples by 3#V, rows as FaceSet::shapes) with vertex v's three
+/// columns multiplied by sqrt(weights[v]) (weights: #V non-negative values, or empty for all 1):
+/// the squared singular values of the weighted, centred data matrix over (samples - 1). A mode
+/// count is the smallest k whose leading variances sum to at least that fraction of the total.
+/// Throws Error for fewer than 2 samples or a weight count other than #V.
+Spectrum shapeSpectrum(const Eigen::MatrixXd& shapes, const Eigen::VectorXd& weights = {});
+
+/// Area of each vertex: a third of the areas of its triangles, mm^2. #V values.
+Eigen::VectorXd vertexAreas(const Vertices& V, const Triangles& F);
+
+/// The region group of a landmark name ("eyes" for "en_l"), or "" if it is not central.
+std::string landmarkGroup(const std::string& landmark);
+
+} // namespace facesketch::evaluation

@@ -1,0 +1,269 @@
+// Tests of evaluation/realism: the mean-face distance on sets with known answers (a set against a
+// moved, turned and scaled copy of itself; two parallel planes), spectra with known mode
+// counts, loading a dataset in cm, and bad input.
+#include "evaluation/realism.h"
+
+#include "core/error.h"
+#include "core/random.h"
+#include "geometry/primitives.h"
+#include "geometry/similarity.h"
+#include "io/mesh_io.h"
+#include "test_common.h"
+
+#include <Eigen/Geometry>
+#include <Eigen/QR>
+#include <cmath>
+
+using namespace facesketch;
+using namespace facesketch::evaluation;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A bumpy height field 100 x 120 mm (21 x 25 vertices), `samples` faces that differ in the
+// bump's height and width, with five central landmarks on it.
+FaceSet bumpySet(int samples)
+{
+    const Mesh grid = makeGrid(21, 25, 100, 120);
+    FaceSet set;
+    set.name = "bumpy";
+    set.triangles = grid.F;
+    set.shapes.resize(samples, 3 * grid.V.rows());
+    for (int s = 0; s < samples; ++s) {
+        Vertices V = grid.V;
+        const double height = 20 + 3 * std::sin(1.3 * s), width = 25 + 4 * std::cos(0.7 * s + 0.2);
+        for (Eigen::Index v = 0; v < V.rows(); ++v)
+            V(v, 2) = height * std::exp(-(V(v, 0) * V(v, 0) + 0.5 * V(v, 1) * V(v, 1)) / (2 * width * width)) + 0.1 * s * V(v, 0) * 0.01;
+        set.shapes.row(s) = dataset::flatten(V);
+    }
+    // Grid vertex (i, j) is row j * 21 + i; x = -50 + 5 i, y = -60 + 5 j.
+    set.landmarks = { { "en_r", 16 * 21 + 5 }, { "en_l", 16 * 21 + 15 }, { "prn", 12 * 21 + 10 }, { "ch_r", 5 * 21 + 6 },
+        { "ch_l", 5 * 21 + 14 }, { "gn", 1 * 21 + 10 } };
+    return set;
+}
+
+// Two samples of the plane z = z0 +- 1 (20 x 20 vertices over 100 x 100 mm) plus five vertices
+// off the plane, in no triangle, that carry the landmarks: the landmarks stay put while the
+// plane's height is z0.
+FaceSet planeSet(double z0)
+{
+    const Mesh grid = makeGrid(20, 20, 100, 100);
+    const Eigen::Index n = grid.V.rows();
+    FaceSet set;
+    set.name = "plane";
+    set.triangles = grid.F;
+    set.shapes.resize(2, 3 * (n + 5));
+    Vertices marks(5, 3);
+    marks << -40, 40, 10, 40, 40, 10, 0, 0, 20, -30, -40, 10, 30, -40, 10;
+    for (int s = 0; s < 2; ++s) {
+        Vertices V(n + 5, 3);
+        V.topRows(n) = grid.V;
+        V.topRows(n).col(2).setConstant(z0 + (s == 0 ? -1 : 1));
+        V.bottomRows(5) = marks;
+        set.shapes.row(s) = dataset::flatten(V);
+    }
+    set.landmarks = { { "en_r", static_cast<int>(n) }, { "en_l", static_cast<int>(n) + 1 }, { "prn", static_cast<int>(n) + 2 },
+        { "ch_r", static_cast<int>(n) + 3 }, { "ch_l", static_cast<int>(n) + 4 } };
+    return set;
+}
+
+// samples x 3*vertices data with the given per-mode variances (sample variance, n - 1), on
+// random orthonormal directions (full rank: Gaussian scores and directions) about a non-zero mean.
+Eigen::MatrixXd knownSpectrum(const std::vector<double>& variances, int samples, int vertices)
+{
+    const auto k = static_cast<Eigen::Index>(variances.size());
+    Random rng(7);
+    Eigen::MatrixXd A = rng.normalMatrix(samples, k);
+    const Eigen::MatrixXd B = rng.normalMatrix(3 * vertices, k);
+    A = A.rowwise() - A.colwise().mean(); // centred scores, so the set's mean is exactly `mean`
+    const Eigen::MatrixXd U = Eigen::HouseholderQR<Eigen::MatrixXd>(A).householderQ() * Eigen::MatrixXd::Identity(samples, k);
+    const Eigen::MatrixXd V = Eigen::HouseholderQR<Eigen::MatrixXd>(B).householderQ() * Eigen::MatrixXd::Identity(3 * vertices, k);
+    Eigen::VectorXd sigma(k);
+    for (Eigen::Index i = 0; i < k; ++i)
+        sigma(i) = std::sqrt(variances[static_cast<size_t>(i)] * (samples - 1));
+    Eigen::RowVectorXd mean = Eigen::RowVectorXd::LinSpaced(3 * vertices, 10, 40);
+    return (U * sigma.asDiagonal() * V.transpose()).rowwise() + mean;
+}
+
+} // namespace
+
+TEST_CASE("realism: a set against a turned, scaled and moved copy of itself is at zero distance")
+{
+    const FaceSet data = bumpySet(6);
+    Similarity s;
+    s.rotation = Eigen::AngleAxisd(0.6, Eigen::Vector3d(0.3, 1, -0.2).normalized()).toRotationMatrix();
+    s.scale = 1.25;
+    s.translation = { 12, -30, 7 };
+    FaceSet reference = data;
+    reference.name = "copy";
+    for (Eigen::Index r = 0; r < data.shapes.rows(); ++r)
+        reference.shapes.row(r) = dataset::flatten(s.apply(dataset::unflatten(data.shapes.row(r))));
+
+    const RealismReport r = evaluateRealism(data, reference);
+    REQUIRE(r.landmarks.size() == 6);
+    REQUIRE(r.alignmentScale == Approx(1.25).epsilon(1e-12));
+    REQUIRE(r.landmarkRms < 1e-9);
+    REQUIRE(r.distances.front().region == "all");
+    REQUIRE(r.distances.front().area > 0);
+    REQUIRE(r.distances.front().max < 1e-9);
+    REQUIRE(r.dataArea == Approx(r.referenceArea).epsilon(1e-9));
+    // The copy varies the same way, only larger: the same mode counts, variances 1.25^2 times.
+    REQUIRE(r.dataSkin.modes95 == r.referenceSkin.modes95);
+    REQUIRE(r.dataCentral.modes99 == r.referenceCentral.modes99);
+    REQUIRE(r.referenceSkin.totalVariance == Approx(1.25 * 1.25 * r.dataSkin.totalVariance).epsilon(1e-9));
+    // Area weights scale by 1.25^2 as well.
+    REQUIRE(r.referenceCentral.totalVariance == Approx(std::pow(1.25, 4) * r.dataCentral.totalVariance).epsilon(1e-9));
+}
+
+TEST_CASE("realism: two planes 3 mm apart under the same landmarks are 3 mm apart everywhere")
+{
+    const RealismReport r = evaluateRealism(planeSet(0), planeSet(3));
+    REQUIRE(r.alignmentScale == Approx(1.0).epsilon(1e-12));
+    REQUIRE(r.landmarkRms < 1e-9);
+    REQUIRE(r.distances.size() >= 2);
+    for (const SurfaceDistance& d : r.distances) {
+        INFO(d.region);
+        REQUIRE(d.area > 0);
+        REQUIRE(d.rms == Approx(3.0).epsilon(1e-12));
+        REQUIRE(d.p95 == Approx(3.0).epsilon(1e-12));
+        REQUIRE(d.max == Approx(3.0).epsilon(1e-12));
+    }
+    // The landmarks are eyes, nose and mouth points: those regions and no others.
+    std::vector<std::string> regions;
+    for (size_t k = 1; k < r.distances.size(); ++k)
+        regions.push_back(r.distances[k].region);
+    REQUIRE(regions == std::vector<std::string> { "eyes", "nose", "mouth" });
+}
+
+TEST_CASE("realism: half a plane lifted by 3 mm gives a 95th percentile of 3 mm and a smaller RMS")
+{
+    // The reference plane is lifted by 3 mm on its right half only (x < 0): the data's central
+    // area over the lifted half is at 3 mm, over the other at 0, so the RMS is
+    // 3 sqrt(area fraction) and the 95th percentile is 3.
+    FaceSet data = planeSet(0), reference = planeSet(0);
+    const Eigen::Index n = 400;
+    for (Eigen::Index r = 0; r < 2; ++r)
+        for (Eigen::Index v = 0; v < n; ++v)
+            if (reference.shapes(r, 3 * v) < 0)
+                reference.shapes(r, 3 * v + 2) += 3.0;
+    const RealismReport r = evaluateRealism(data, reference);
+    const SurfaceDistance& all = r.distances.front();
+    REQUIRE(all.max > 2.9);
+    REQUIRE(all.p95 > 2.9);
+    REQUIRE(all.rms > 1.0);
+    REQUIRE(all.rms < 2.9);
+}
+
+TEST_CASE("shape spectrum: a set with a known spectrum gives known mode counts")
+{
+    // Variances 40, 30, 15, 8, 4, 2.5, 0.5 of 100: cumulative 40, 70, 85, 93, 97, 99.5, 100.
+    const std::vector<double> variances { 40, 30, 15, 8, 4, 2.5, 0.5 };
+    const Eigen::MatrixXd X = knownSpectrum(variances, 12, 15);
+    const Spectrum s = shapeSpectrum(X);
+    REQUIRE(s.samples == 12);
+    REQUIRE(s.dimensions == 45);
+    REQUIRE(s.totalVariance == Approx(100).epsilon(1e-9));
+    for (size_t k = 0; k < variances.size(); ++k)
+        REQUIRE(s.variances[k] == Approx(variances[k]).epsilon(1e-9));
+    for (size_t k = variances.size(); k < s.variances.size(); ++k)
+        REQUIRE(std::abs(s.variances[k]) < 1e-9);
+    REQUIRE(s.modes90 == 4);
+    REQUIRE(s.modes95 == 5);
+    REQUIRE(s.modes99 == 6);
+
+    // A uniform weight w scales every variance by w; the counts stay.
+    const Spectrum w = shapeSpectrum(X, Eigen::VectorXd::Constant(15, 4.0));
+    REQUIRE(w.totalVariance == Approx(400).epsilon(1e-9));
+    REQUIRE(w.modes90 == 4);
+    REQUIRE(w.modes99 == 6);
+    // Weight zero removes a vertex from the measure.
+    Eigen::VectorXd half = Eigen::VectorXd::Ones(15);
+    half.tail(5).setZero();
+    const Spectrum h = shapeSpectrum(X, half);
+    const Spectrum cut = shapeSpectrum(X.leftCols(30));
+    REQUIRE(h.totalVariance == Approx(cut.totalVariance).epsilon(1e-9));
+}
+
+TEST_CASE("vertex areas: a third of each triangle, summing to the surface's area")
+{
+    const Mesh grid = makeGrid(11, 6, 50, 20);
+    const Eigen::VectorXd a = vertexAreas(grid.V, grid.F);
+    REQUIRE(a.sum() == Approx(1000).epsilon(1e-12));
+    REQUIRE(a.minCoeff() > 0);
+}
+
+TEST_CASE("realism: landmark groups split the central landmarks")
+{
+    REQUIRE(landmarkGroup("en_l") == "eyes");
+    REQUIRE(landmarkGroup("g") == "brows");
+    REQUIRE(landmarkGroup("sbal_r") == "nose");
+    REQUIRE(landmarkGroup("cph_l") == "mouth");
+    REQUIRE(landmarkGroup("gn") == "chin");
+    REQUIRE(landmarkGroup("obs_l").empty());
+    REQUIRE(landmarkGroup("_l").empty());
+}
+
+TEST_CASE("realism: a dataset in cm is loaded as mm, skin only")
+{
+    test::TempDir dir;
+    dataset::Manifest m;
+    m.units = "cm";
+    m.vertexCount = 7;
+    m.topology.resize(3, 3);
+    m.topology << 0, 1, 2, 0, 2, 3, 4, 5, 6;
+    m.components = { { "skin", 0, 4 }, { "eye_left", 4, 7 } };
+    m.landmarks = { { "prn", 2 }, { "en_l", 5 } };
+    m.samples = { { "a", "a.ply", dataset::Role::Train }, { "b", "b.ply", dataset::Role::Test } };
+    dataset::writeDataset(dir / "set", m, [&](const fs::path& tmp) {
+        for (int s = 0; s < 2; ++s) {
+            Mesh mesh;
+            mesh.V.resize(7, 3);
+            mesh.V << 0, 0, 0, 1, 0, 0, 1, 1, s, 0, 1, 0, 5, 5, 5, 6, 5, 5, 5, 6, 5;
+            mesh.F = m.topology;
+            writePly(tmp / m.samples[static_cast<size_t>(s)].file, mesh);
+        }
+    });
+    const FaceSet set = loadFaceSet(dataset::openDataset(dir / "set"));
+    REQUIRE(set.shapes.rows() == 2);
+    REQUIRE(set.shapes.cols() == 12);
+    REQUIRE(set.shapes(1, 8) == Approx(10.0)); // b's vertex 2, z = 1 cm
+    REQUIRE(set.triangles.rows() == 2);
+    REQUIRE(set.landmarks == std::map<std::string, int> { { "prn", 2 } });
+
+    m.samples.pop_back();
+    dataset::writeDataset(dir / "one", m, [&](const fs::path& tmp) {
+        Mesh mesh;
+        mesh.V = Vertices::Zero(7, 3);
+        mesh.F = m.topology;
+        writePly(tmp / "a.ply", mesh);
+    });
+    REQUIRE_THROWS_WITH(loadFaceSet(dataset::openDataset(dir / "one")), Catch::Contains("one") && Catch::Contains("1 samples"));
+}
+
+TEST_CASE("realism: bad input names the set and the value")
+{
+    const FaceSet data = bumpySet(3);
+    FaceSet few = data;
+    few.name = "few";
+    few.landmarks.erase("en_l");
+    few.landmarks.erase("en_r");
+    few.landmarks.erase("gn");
+    REQUIRE_THROWS_WITH(evaluateRealism(data, few), Catch::Contains("bumpy") && Catch::Contains("few") && Catch::Contains("3 shared"));
+
+    FaceSet nan = data;
+    nan.name = "nan";
+    nan.shapes(1, 7) = std::nan("");
+    REQUIRE_THROWS_WITH(evaluateRealism(data, nan), Catch::Contains("nan: sample 1 vertex 2"));
+
+    FaceSet one = data;
+    one.name = "single";
+    one.shapes.conservativeResize(1, Eigen::NoChange);
+    REQUIRE_THROWS_WITH(evaluateRealism(one, data), Catch::Contains("single: 1 samples"));
+
+    FaceSet bad = data;
+    bad.name = "badmark";
+    bad.landmarks["prn"] = 100000;
+    REQUIRE_THROWS_WITH(evaluateRealism(bad, data), Catch::Contains("badmark: landmark prn: vertex 100000"));
+
+    REQUIRE_THROWS_WITH(shapeSpectrum(data.shapes, Eigen::VectorXd::Ones(3)), Catch::Contains("3 weights"));
+}
