@@ -1,17 +1,22 @@
 // `facesketch pose` and `facesketch animate` (thesis 5.3-5.5, issue 13): replay a session's pose
 // strokes onto a face and print the feature points they identified; play its keyframes as PNG
-// frames or a glTF 2.0 animation (.glb).
+// frames or a glTF 2.0 animation (.glb). Without --face or the session's `face`, the face posed is
+// the one the session's shape strokes build (as `facesketch sketch` replays them).
 
 #include "commands.h"
+#include "sketch_data.h"
 
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "io/gltf_export.h"
 #include "io/mesh_io.h"
+#include "model/head_assembly.h"
 #include "pose/animation.h"
 #include "pose/pose_file.h"
 #include "pose/pose_session.h"
+#include "sketch/replay.h"
 #include "sketch/session.h"
+#include "stats/model_file.h"
 
 #include <iomanip>
 #include <iostream>
@@ -20,13 +25,39 @@ namespace facesketch::app {
 
 namespace {
 
-/// The face a session poses: --face, else the session's `face`, else the pose model's mean face.
+/// The face a session shapes with its shape strokes (docs/session-format.md), replayed as
+/// `facesketch sketch` and the app replay it (sketch/replay.h SessionReplayer): the session's
+/// face model and dataset, every stroke in order (a refused one leaves the face as it was), and
+/// the rigid parts (eyes, teeth, tongue) following the skin when the model knows the head, as
+/// the app shows it. Pose actions placed between shape strokes pose this final face.
+Mesh sketchedFace(const sketch::Session& session, const std::string& sessionFile)
+{
+    const auto [modelPath, datasetPath] = sketch::sessionInputs(session, sessionFile);
+    const stats::FaceModel m = stats::loadFaceModel(modelPath);
+    const SketchData d = loadSketchData(datasetPath.string(), &m);
+    gpu::ScopedDevice device;
+    sketch::SessionReplayer replayer(*device, m, d.candidateFaces, d.flags, d.landmarks, modelPath.string());
+    int refused = 0;
+    for (const sketch::StrokeAction& a : session.actions)
+        refused += replayer.apply(a).kind == sketch::ReplayOutcome::Kind::Refused ? 1 : 0;
+    std::cout << "# " << session.actions.size() << " shape strokes replayed (" << replayer.tracking().strokes() << " applied, " << refused
+              << " refused): the face to pose\n";
+    const Eigen::VectorXd& skin = replayer.tracking().face();
+    if (m.head.vertexCount > 0)
+        return model::assembleHead(m.head, m.meanFace, skin);
+    return { asVertices(skin), m.triangles };
+}
+
+/// The face a session poses: --face, else the session's `face`, else the face its shape
+/// strokes build, else the pose model's mean face.
 Mesh faceToPose(const pose::PoseModel& model, const std::string& faceOption, const sketch::Session& session, const std::string& sessionFile)
 {
     if (!faceOption.empty())
         return readMesh(faceOption);
     if (!session.face.empty())
         return readMesh(sketch::sessionPath(sessionFile, session.face));
+    if (!session.actions.empty())
+        return sketchedFace(session, sessionFile);
     Mesh mean;
     mean.V = asVertices(model.meanNeutral);
     mean.F = model.topology;
@@ -93,9 +124,6 @@ void runAnimate(const AnimateCommand& c)
         fail(out.string(), ": exists and is not an empty folder; frames are written into a new one (or name a .glb file)");
     const pose::PoseModel model = pose::loadPoseModel(modelPath);
     const Mesh face = faceToPose(model, c.face, session, c.session);
-    if (!session.actions.empty())
-        std::cout << "# " << session.actions.size()
-                  << " shape strokes not replayed: they shape the face model's skin; name the face to pose in the session's `face`\n";
     pose::PoseEditor editor(model, face);
     pose::replayPoseActions(editor, session);
     const pose::Timeline timeline = editor.timeline(session.tension);
@@ -121,7 +149,8 @@ void addPoseCommand(CLI::App& root)
     auto c = std::make_shared<PoseCommand>();
     auto* cmd = root.add_subcommand("pose", "Replay a session's pose strokes onto a face (thesis 5.3, 5.4); print the FPs found");
     cmd->add_option("poses", c->model, "Pose model file (facesketch train-poses)")->required();
-    cmd->add_option("--face", c->face, "Mesh to pose (OBJ or PLY); default: the session's `face`, else the pose model's mean face");
+    cmd->add_option("--face", c->face,
+        "Mesh to pose (OBJ or PLY); default: the session's `face`, else the face its shape strokes build, else the pose model's mean face");
     cmd->add_option("--session", c->session, "Session file with pose strokes (docs/session-format.md)")->required();
     cmd->add_option("-o,--output", c->output, "Posed mesh to write (.ply or .obj)")->required();
     cmd->callback([c] { runPose(*c); });
@@ -133,7 +162,8 @@ void addAnimateCommand(CLI::App& root)
     auto* cmd = root.add_subcommand("animate", "Play a session's keyframes (thesis 5.5) as PNG frames (OUT/) or glTF 2.0 (OUT.glb)");
     cmd->add_option("session", c->session, "Session file naming its pose model (`poses`) with at least two keyframes")->required();
     cmd->add_option("-o,--output", c->output, "A new folder for frame_0000.png, ... or a .glb file")->required();
-    cmd->add_option("--face", c->face, "Mesh to pose; default: the session's `face`, else the pose model's mean face");
+    cmd->add_option("--face", c->face,
+        "Mesh to pose; default: the session's `face`, else the face its shape strokes build, else the pose model's mean face");
     cmd->add_option("--fps", c->fps, "Frames per second")->capture_default_str()->check(CLI::Range(0.1, 1000.0));
     cmd->add_option("--size", c->size, "PNG frames: pixels square")->capture_default_str()->check(CLI::Range(16, 4096));
     cmd->callback([c] { runAnimate(*c); });

@@ -15,7 +15,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-targets=(obj obj_vertices ply manifest ict_json model curvature_cache png session)
+targets=(obj obj_vertices ply manifest ict_json model curvature_cache png session pose_model feature_points)
 what=${1:-all}
 seconds=${2:-30}
 [ "$what" = all ] || targets=("$what")

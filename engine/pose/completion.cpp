@@ -4,16 +4,34 @@
 #include "stats/check.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace facesketch::pose {
 
-Completion complete(const stats::Mppca& mixture, const stats::Observations& observed)
+namespace {
+
+Completion fromInference(const stats::Inference& inference)
+{
+    return { inference.reconstruction, inference.winner, inference.posterior };
+}
+
+} // namespace
+
+Completion complete(const stats::Mppca& mixture, const stats::Observations& observed, double noiseMm)
 {
     if (mixture.size() == 0)
         fail("complete: the completion mixture has no components");
+    if (!(noiseMm >= 0) || !std::isfinite(noiseMm))
+        fail("complete: observation noise ", noiseMm, " mm is not a finite value >= 0");
     observed.validate(mixture.dim());
-    const stats::Inference inference = stats::infer(mixture, observed);
-    return { inference.reconstruction, inference.winner, inference.posterior };
+    if (noiseMm == 0)
+        return fromInference(stats::infer(mixture, observed));
+    // Independent observation noise adds to the isotropic noise of every component: the same
+    // mixture with sigma_k^2 + noise^2 (a copy: 3F by q per component, small).
+    stats::Mppca noisy = mixture;
+    for (stats::Ppca& c : noisy.components)
+        c.sigma2 += noiseMm * noiseMm;
+    return fromInference(stats::infer(noisy, observed));
 }
 
 stats::Observations observeFps(const FeaturePoints& fps, const Eigen::Ref<const Eigen::VectorXd>& fp, const std::vector<std::string>& names)

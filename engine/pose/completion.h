@@ -38,9 +38,19 @@ struct Completion {
 /// displacements with FP i as "vertex" i (stats::Observations::addVertex(i, displacement), or
 /// addProjectedVertex(i, P, P * displacement) for a stroke seen in a view, whose depth then
 /// comes from the model, thesis 5.3 and eq. 4.21). With no observations the result is the mean
-/// of the component of highest prior. Throws Error if an observation lies outside the 3F
-/// vector, a coordinate is measured twice, or the mixture is empty.
-Completion complete(const stats::Mppca& mixture, const stats::Observations& observed);
+/// of the component of highest prior.
+///
+/// `noiseMm` (>= 0) is the standard deviation of each observed coordinate's own error, in mm:
+/// 0 for exact FPs (the minimal table), the reading's error for FPs read from strokes
+/// (PoseStrokeOptions::readingNoiseMm). It is added to every component's sigma^2 where the
+/// component is chosen and its latents inferred: y = P t + e with e ~ N(0, noiseMm^2 I). A
+/// component fitted on a few distinct poses has a tiny sigma^2 (0.02 mm^2 for the open-mouth
+/// poses of the tests' posing world), so without it a drawn FP 2 mm off its pose ruled that
+/// component out and a closed-mouth one completed an open jaw (docs/posing.md). The observed
+/// coordinates are still returned as given. Throws Error if an observation lies outside the 3F
+/// vector, a coordinate is measured twice, the mixture is empty or noiseMm is negative or not
+/// finite.
+Completion complete(const stats::Mppca& mixture, const stats::Observations& observed, double noiseMm = 0.0);
 
 /// Observations of the FPs `names` of the full FP pose `fp` (3F): each FP named is observed in
 /// full. Throws Error naming an FP that `fps` lacks.

@@ -113,8 +113,10 @@ PoseModel loadPoseModel(const std::filesystem::path& path)
     const Eigen::Index d = 3 * static_cast<Eigen::Index>(model.vertexCount);
     if (model.topology.size() > 0 && (model.topology.minCoeff() < 0 || model.topology.maxCoeff() >= model.vertexCount))
         inconsistent("a triangle index outside [0, ", model.vertexCount, ")");
-    if (static_cast<Eigen::Index>(model.fps.vertices.size()) != F || F < 4)
+    if (static_cast<Eigen::Index>(model.fps.vertices.size()) != F)
         inconsistent(F, " feature point names and ", model.fps.vertices.size(), " vertices");
+    if (F < 4)
+        inconsistent(F, " feature points, fewer than 4");
     for (int v : model.fps.vertices)
         if (v < 0 || v >= model.vertexCount)
             inconsistent("feature point vertex ", v, " outside [0, ", model.vertexCount, ")");

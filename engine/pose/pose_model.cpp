@@ -47,9 +47,9 @@ void checkFace(const PoseModel& model, const Mesh& face, const std::string& what
                 fail(what, ": vertex ", v, " coordinate ", c, " = ", face.V(v, c), " is not finite");
 }
 
-Completion completePose(const PoseModel& model, const stats::Observations& observed, Interpretation which)
+Completion completePose(const PoseModel& model, const stats::Observations& observed, Interpretation which, double noiseMm)
 {
-    return complete(which == Interpretation::Primary ? model.completion.primary : model.completion.alternative, observed);
+    return complete(which == Interpretation::Primary ? model.completion.primary : model.completion.alternative, observed, noiseMm);
 }
 
 Vertices posedFace(const PoseModel& model, const Vertices& neutral, const Eigen::Ref<const Eigen::VectorXd>& fp)

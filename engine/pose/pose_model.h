@@ -59,8 +59,9 @@ void checkFace(const PoseModel& model, const Mesh& face, const std::string& what
 /// Which completion mixture to use (thesis figs. 5.10, 5.11: the interface lets the user switch).
 enum class Interpretation { Primary, Alternative };
 
-/// complete() with the model's primary or alternative mixture.
-Completion completePose(const PoseModel& model, const stats::Observations& observed, Interpretation which = Interpretation::Primary);
+/// complete() with the model's primary or alternative mixture and observation noise `noiseMm`.
+Completion completePose(
+    const PoseModel& model, const stats::Observations& observed, Interpretation which = Interpretation::Primary, double noiseMm = 0.0);
 
 /// The face `neutral` (#V by 3, mm) in the pose whose FP displacements are `fp` (3F), by the
 /// statistical mapping: neutral + Psi(fp). Throws Error if the sizes do not match the model or

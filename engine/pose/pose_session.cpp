@@ -14,6 +14,8 @@ PoseEditor::PoseEditor(const PoseModel& model, const Mesh& neutral, const PoseSt
     , options_(options)
 {
     checkFace(model, neutral, "the face to pose");
+    if (!(options.readingNoiseMm >= 0) || !std::isfinite(options.readingNoiseMm))
+        fail("pose strokes: reading noise ", options.readingNoiseMm, " mm is not a finite value >= 0");
     clusters_ = fpClusters(model.fps, model.fpTraining, neutral.V, options.clusters);
     State start;
     start.pose = Eigen::VectorXd::Zero(3 * model.fpCount());
@@ -34,7 +36,7 @@ void PoseEditor::apply(const sketch::PoseAction& action)
         next.strokes.push_back({ projected.world, sketch::viewPlaneRows(camera) });
         next.reading = identifyFps(clusters_, next.strokes, options_.reading);
         const Completion completion = completePose(model_, poseObservations(model_.fps, neutral_.V, next.reading),
-            action.alternative ? Interpretation::Alternative : Interpretation::Primary);
+            action.alternative ? Interpretation::Alternative : Interpretation::Primary, options_.readingNoiseMm);
         next.pose = completion.fp;
         next.component = completion.winner;
         next.face.V = posedFace(model_, neutral_.V, next.pose);

@@ -31,6 +31,11 @@ struct PoseStrokeOptions {
     double tension = 0.5;  ///< of the densifying spline
     FpClusterOptions clusters;
     FpReadingOptions reading;
+    /// Standard deviation (mm) of a read FP's error, the completion's observation noise
+    /// (completion.h complete): a hand-drawn stroke is a pixel or two off, and step 5 picks the
+    /// best point per FP along it, a millimetre or two from the FP's true place (the clusters'
+    /// minStdMm, the same 1.5 mm).
+    double readingNoiseMm = 1.5;
 };
 
 class PoseEditor {

@@ -109,7 +109,8 @@ struct FpReadingOptions {
     /// many closed-mouth poses, and at 3 an open jaw's lower lip (12 mm down) hits the chin's
     /// cluster instead; measured on the synthetic held-out face, jaw_open from its lip and brow
     /// strokes: 6.45 mm at 3, 4.38 mm at 4 (neutral 7.22 mm), the other poses unchanged
-    /// (with the completion of posemodel 7fe5a1f; its later mixtures change these figures).
+    /// (with the completion of posemodel 7fe5a1f; with today's mixtures and the completion's
+    /// reading noise, PoseStrokeOptions::readingNoiseMm, jaw_open is 0.96 mm).
     double maxMahalanobis = 4.0;
     double endpointWeight = 2.0; ///< >= 1: endpoints' vote and score (steps 3-5)
     double nudgeMm = 6.0;        ///< how far a missing endpoint may move to a boundary cluster

@@ -7,6 +7,9 @@
 #include "dataset/manifest.h"
 #include "io/mesh_io.h"
 #include "io/png.h"
+#include "pose/pose_file.h"
+#include "registration/feature_points.h"
+#include "registration/surface_query.h"
 #include "sketch/session.h"
 #include "stats/model_file.h"
 
@@ -171,12 +174,57 @@ bool session(const std::uint8_t* data, std::size_t size)
     return refusedOrRead([&] { (void)sketch::loadSession(file); });
 }
 
+// As `model`, for the pose model file (pose/pose_file.h): first byte even, the rest is a payload
+// wrapped in a valid FSKPOSE header and checksum; odd, the whole file as read.
+bool poseModel(const std::uint8_t* data, std::size_t size)
+{
+    if (size == 0)
+        return false;
+    std::string bytes;
+    if (data[0] % 2 == 0) {
+        const char magic[8] = { 'F', 'S', 'K', 'P', 'O', 'S', 'E', '\0' };
+        const std::uint32_t version = pose::kPoseModelVersion;
+        const std::uint64_t length = size - 1;
+        const std::uint64_t hash = fnv1a(data + 1, size - 1);
+        bytes.append(magic, 8);
+        bytes.append(reinterpret_cast<const char*>(&version), sizeof version);
+        bytes.append(reinterpret_cast<const char*>(&length), sizeof length);
+        bytes.append(reinterpret_cast<const char*>(data + 1), size - 1);
+        bytes.append(reinterpret_cast<const char*>(&hash), sizeof hash);
+    } else {
+        bytes.assign(reinterpret_cast<const char*>(data + 1), size - 1);
+    }
+    const fs::path file = scratch("input.poses", bytes.data(), bytes.size());
+    return refusedOrRead([&] { (void)pose::loadPoseModel(file); });
+}
+
+// A scan's feature points (`import scans`, DIR/<stem>.points.json), read and then checked against
+// a fixed scan as registration checks them: a 200 mm box around the origin.
+bool featurePoints(const std::uint8_t* data, std::size_t size)
+{
+    static const registration::SurfaceQuery scan([] {
+        Mesh box;
+        box.V.resize(8, 3);
+        box.V << -100, -100, -100, 100, -100, -100, 100, 100, -100, -100, 100, -100, -100, -100, 100, 100, -100, 100, 100, 100, 100, -100,
+            100, 100;
+        box.F.resize(12, 3);
+        box.F << 0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7;
+        return box;
+    }());
+    const fs::path file = scratch("input.points.json", data, size);
+    return refusedOrRead([&] {
+        const registration::FeaturePoints points = registration::readFeaturePoints(file);
+        registration::validateFeaturePoints(points, scan, "input");
+    });
+}
+
 } // namespace
 
 const std::vector<Target>& targets()
 {
     static const std::vector<Target> all = { { "obj", obj }, { "obj_vertices", objVertices }, { "ply", ply }, { "manifest", manifest },
-        { "ict_json", ictJson }, { "model", model }, { "curvature_cache", curvatureCache }, { "png", png }, { "session", session } };
+        { "ict_json", ictJson }, { "model", model }, { "curvature_cache", curvatureCache }, { "png", png }, { "session", session },
+        { "pose_model", poseModel }, { "feature_points", featurePoints } };
     return all;
 }
 

@@ -23,7 +23,8 @@ struct Target {
 };
 
 /// Every target, in a fixed order: obj, obj_vertices, ply, manifest, ict_json, model,
-/// curvature_cache, png, session.
+/// curvature_cache, png, session, pose_model (pose/pose_file.h), feature_points (a scan's
+/// .points.json, registration/feature_points.h, read and validated).
 const std::vector<Target>& targets();
 
 /// The target called `name`; throws std::invalid_argument if there is none.

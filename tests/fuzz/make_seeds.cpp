@@ -6,6 +6,7 @@
 #include "dataset/manifest.h"
 #include "io/mesh_io.h"
 #include "io/png.h"
+#include "pose/pose_file.h"
 #include "sketch/session.h"
 #include "stats/model_file.h"
 
@@ -84,6 +85,43 @@ stats::FaceModel tinyModel(bool head)
         m.head.topology.resize(0, 3);
     }
     return m;
+}
+
+// The smallest pose model training makes (pose/pose_model.h): 4 vertices in two triangles, each
+// an FP; 6 identities in 3 poses (neutral, FP 0 and FP 2 moving together two ways).
+pose::PoseModel tinyPoseModel()
+{
+    pose::PoseSet s;
+    s.fps = { { "2.1", "4.1", "8.3", "8.4" }, { 0, 1, 2, 3 } };
+    s.vertexCount = 4;
+    s.topology.resize(2, 3);
+    s.topology << 0, 1, 2, 0, 2, 3;
+    s.poseNames = { "neutral", "pose_a", "pose_b" };
+    const int identities = 6;
+    s.fpDisplacements = Eigen::MatrixXd::Zero(3 * identities, 12);
+    s.neutrals = Eigen::MatrixXd::Zero(identities, 12);
+    for (int i = 0; i < identities; ++i) {
+        s.identities.push_back({ "id" + std::to_string(i), dataset::Role::Train });
+        s.neutrals.row(i) << 0, 0, 0, 10, 0, 0, 10, 10 + i, 0, 0, 10, 0;
+        const double scale = 1.0 + 0.05 * i;
+        for (int p = 0; p < 3; ++p) {
+            Eigen::RowVectorXd row = 0.01 * Eigen::RowVectorXd::LinSpaced(12, -1.0 + p, 1.0 + i);
+            row(0) += scale * p;
+            row(7) += (p == 1 ? 5.0 : p == 2 ? -5.0 : 0.0) * scale;
+            s.fpDisplacements.row(3 * i + p) = row;
+        }
+    }
+    s.meshDisplacements = s.fpDisplacements;
+    pose::PoseModelOptions o;
+    o.completion.candidates = { 1, 2 };
+    o.completion.latentDims = { 1 };
+    o.completion.restarts = 1;
+    o.mapping.fpLatentDim = 2;
+    o.mapping.meshLatentDim = 2;
+    o.mapping.components = 1;
+    o.mapping.jointLatentDim = 2;
+    o.mapping.restarts = 1;
+    return pose::trainPoseModel(s, s, { { "pose_a", { "2.1" } }, { "pose_b", { "2.1" } } }, o);
 }
 
 } // namespace
@@ -198,6 +236,22 @@ int main(int argc, char** argv)
         b.reading.symmetry = true;
         session.actions.push_back(b);
         writeBytes(root / "session" / "seed-two-strokes.json", sketch::sessionToJson(session));
+
+        // A pose model: first byte 0 the payload alone (the harness adds header and checksum), 1
+        // the whole file.
+        pose::savePoseModel(tinyPoseModel(), tmp / "p.poses");
+        const std::string poses = readBytes(tmp / "p.poses");
+        writeBytes(root / "pose_model" / "seed-tiny-payload.bin", std::string(1, '\0') + poses.substr(20, poses.size() - 28));
+        writeBytes(root / "pose_model" / "seed-tiny-file.bin", std::string(1, '\1') + poses);
+        (void)pose::loadPoseModel(tmp / "p.poses");
+
+        // A scan's feature points on the harness's 200 mm box (every required point and two
+        // optional ones, on four of its faces, so not all in one plane).
+        writeBytes(root / "feature_points" / "seed-box.points.json",
+            R"({"prn": [0, -20, 100], "sn": [0, -35, 100], "en_l": [15, 10, 100], "en_r": [-15, 10, 100], )"
+            R"("ex_l": [100, 12, 60], "ex_r": [-100, 12, 60], "ch_l": [100, -50, 70], "ch_r": [-100, -50, 70], )"
+            R"("pg": [0, -100, 80], "g": [0, 40, 101.5], "obs_l": [99, 0, -10]})"
+            "\n");
     } catch (const Error& e) {
         std::fprintf(stderr, "fuzz_make_seeds: %s\n", e.what());
         return 1;

@@ -122,3 +122,36 @@ TEST_CASE("completion: bad observations and tables are refused")
     bad(4, 2) = std::nan("");
     REQUIRE_THROWS_WITH(fitCompletion(bad, train, kToyTable, o), Catch::Contains("(4, 2)"));
 }
+
+TEST_CASE("completion: observation noise keeps a tight component for an FP drawn a little off its pose")
+{
+    // Two hand-made components over two FPs (d = 6, q = 1): a tight open pose (FP 0 10 mm down,
+    // FP 1 5 mm down, sigma^2 = 0.01 mm^2, as a few distinct training poses fit) and a broad
+    // rest pose at zero (sigma^2 = 9 mm^2). FP 0 drawn 1.5 mm short of the open pose.
+    stats::Ppca open;
+    open.mean = Eigen::VectorXd::Zero(6);
+    open.mean(1) = -10.0;
+    open.mean(4) = -5.0;
+    open.W = Eigen::MatrixXd::Zero(6, 1);
+    open.W(0, 0) = 0.1;
+    open.sigma2 = 0.01;
+    stats::Ppca rest = open;
+    rest.mean.setZero();
+    rest.sigma2 = 9.0;
+    stats::Mppca mixture;
+    mixture.components = { rest, open };
+    mixture.priors = Eigen::Vector2d(0.5, 0.5);
+    stats::Observations drawn;
+    drawn.addVertex(0, Eigen::Vector3d(0.0, -8.5, 0.0));
+    // Exact observations: 1.5 mm is 15 standard deviations of the open pose, so the rest pose wins.
+    const Completion exact = complete(mixture, drawn);
+    CHECK(exact.winner == 0);
+    CHECK(std::abs(exact.fp(4)) < 1e-12);
+    // With a reading noise of 1.5 mm the open pose explains the point, and FP 1 follows it.
+    const Completion noisy = complete(mixture, drawn, 1.5);
+    CHECK(noisy.winner == 1);
+    CHECK(noisy.fp(4) == Approx(-5.0).margin(1e-9));
+    CHECK(noisy.fp.segment<3>(0) == Eigen::Vector3d(0.0, -8.5, 0.0));
+    REQUIRE_THROWS_WITH(complete(mixture, drawn, -1.0), Catch::Contains("observation noise -1 mm"));
+    REQUIRE_THROWS_WITH(complete(mixture, drawn, std::nan("")), Catch::Contains("observation noise"));
+}

@@ -94,4 +94,10 @@ TEST_CASE("pose file: bad files are refused naming the path and the fault")
     bad.fps.vertices[2] = bad.vertexCount + 3;
     savePoseModel(bad, dir / "bad.model");
     REQUIRE_THROWS_WITH(loadPoseModel(dir / "bad.model"), Catch::Contains("inconsistent pose model") && Catch::Contains("outside"));
+    // Too few feature points is said as such (names and vertices agree).
+    PoseModel few = m;
+    few.fps.names.resize(3);
+    few.fps.vertices.resize(3);
+    savePoseModel(few, dir / "few.model");
+    REQUIRE_THROWS_WITH(loadPoseModel(dir / "few.model"), Catch::Contains("3 feature points, fewer than 4"));
 }

@@ -80,7 +80,7 @@ TEST_CASE("pose stroke eval: posing a held-out face from its poses' strokes beat
     REQUIRE(e.record.ratio == Approx(sum / neutral).epsilon(1e-12));
     INFO("ratio " << e.record.ratio << ", " << e.refused << " strokes refused");
     REQUIRE(e.record.ratio < 0.85);
-    // The open smile and the open jaw move the face most; their strokes must beat neutral.
+    // The open smile and the open jaw move the face most; their strokes must recover much of it.
     REQUIRE(e.perPose[0].meanMm < 0.85 * e.perPose[0].neutralMm);
-    REQUIRE(e.perPose[1].meanMm < e.perPose[1].neutralMm);
+    REQUIRE(e.perPose[1].meanMm < 0.7 * e.perPose[1].neutralMm);
 }
