@@ -83,6 +83,19 @@ struct MapperParams {
     /// Observations pin only the image of the vertex in the view (its depth is left to the
     /// model) instead of the candidate's depth adapted to the stroke (4.6.2).
     bool viewPlaneOnly = false;
+    /// Observations pin a vertex only across the stroke in the view plane (and its depth,
+    /// unless viewPlaneOnly), not along it (VertexObservation::acrossStroke). Beyond the
+    /// thesis, whose 4.6.2 pins the stroke point itself: which vertex of a contour lies under
+    /// which point is the least certain part of a mapping (a mapped vertex is typically a
+    /// neighbour along the line), and pinning it there drags the contour's vertices along the
+    /// stroke into each other's places.
+    bool acrossStrokeOnly = false;
+    /// When positive, only the candidates of this many training faces count: those nearest the
+    /// current face (mean squared vertex distance). 0: every face (the thesis' cloud). Once the
+    /// face approaches the sketched one (after earlier strokes, or on a second reading of the
+    /// same stroke), the faces most like it place each vertex nearest where the sketched face
+    /// has it, so the vertex under a stroke point is more often the right one.
+    int similarFaces = 0;
 
     // --- HMM (4.8.5) ---
     double sigmaS = 0.4;             ///< initial probability, eq. 4.45
