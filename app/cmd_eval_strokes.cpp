@@ -27,7 +27,7 @@ struct EvalStrokesCommand {
     double noise = 1.0, extreme = 1.0, errorScale = 10.0;
     int size = 1024, renders = 2, maxFaces = 0, similarFaces = 0, rereads = 0;
     std::uint64_t seed = 1;
-    bool noCorrelation = false, quiet = false, noProject = false, viewPlaneOnly = false, ownContours = false, acrossStroke = false;
+    bool noCorrelation = false, quiet = false, noProject = false, ownContours = false, thesisObservations = false;
     std::string oracle = "none";
     double supersedeRadius = sketch::TrackingOptions {}.supersedeRadius;
 };
@@ -90,9 +90,9 @@ void runEvalStrokes(const EvalStrokesCommand& c)
     o.correlation = !c.noCorrelation;
     o.tracking.supersedeRadius = c.supersedeRadius;
     o.tracking.projectOntoFaceSpace = !c.noProject;
-    o.params.viewPlaneOnly = c.viewPlaneOnly;
+    if (c.thesisObservations)
+        o.params = sketch::MapperParams::thesis();
     o.params.ownContours = c.ownContours;
-    o.params.acrossStrokeOnly = c.acrossStroke;
     o.params.similarFaces = c.similarFaces;
     o.rereads = c.rereads;
     o.oracle = evaluation::parseStrokeOracle(c.oracle);
@@ -119,9 +119,9 @@ void runEvalStrokes(const EvalStrokesCommand& c)
                 { "within_1mm", r.within1Mm }, { "within_3mm", r.within3Mm } });
         const nlohmann::json doc { { "model", c.model }, { "dataset", c.dataset }, { "vertices", m.vertexCount() },
             { "image_size", c.size }, { "seed", c.seed }, { "correlation", !c.noCorrelation }, { "supersede_radius_mm", c.supersedeRadius },
-            { "project_onto_face_space", !c.noProject }, { "view_plane_only", c.viewPlaneOnly }, { "own_contours", c.ownContours },
-            { "across_stroke", c.acrossStroke }, { "similar_faces", c.similarFaces }, { "rereads", c.rereads }, { "oracle", c.oracle },
-            { "results", records } };
+            { "project_onto_face_space", !c.noProject }, { "view_plane_only", o.params.viewPlaneOnly }, { "own_contours", c.ownContours },
+            { "across_stroke", o.params.acrossStrokeOnly }, { "similar_faces", c.similarFaces }, { "rereads", c.rereads },
+            { "oracle", c.oracle }, { "results", records } };
         writeFileAtomically(c.json, [&](std::ostream& out) { out << doc.dump(1) << "\n"; });
         std::cout << "wrote " << c.json << "\n";
     }
@@ -173,9 +173,8 @@ void addEvalStrokesCommand(CLI::App& eval)
         ->capture_default_str()
         ->check(CLI::Range(0.0, 1000.0));
     cmd->add_flag("--no-project", c->noProject, "Tracking: keep the strokes' own positions instead of projecting them onto the face space");
-    cmd->add_flag(
-        "--view-plane-only", c->viewPlaneOnly, "Observations pin only each vertex's image in the stroke's view (depth from the model)");
-    cmd->add_flag("--across-stroke", c->acrossStroke, "Observations pin each vertex only across the stroke (and its depth), not along it");
+    cmd->add_flag("--thesis-observations", c->thesisObservations,
+        "Observations pin the stroke point in 3D (thesis 4.6.2) instead of the offset across the stroke in its view plane");
     cmd->add_option("--similar-faces", c->similarFaces, "Candidates only of this many training faces nearest the current face (0: all)")
         ->capture_default_str()
         ->check(CLI::Range(0, 100000));

@@ -292,13 +292,13 @@ TEST_CASE("mapper: options: the open border's silhouette dropped, view-plane-onl
 
     const std::vector<int>& lip = w.contours.at("lip_upper_outer");
     const Stroke stroke = traceOf(w.mean, lip);
-    MapperParams planeOnly;
+    MapperParams planeOnly = MapperParams::thesis();
     planeOnly.viewPlaneOnly = true;
     const StrokeReading r = reader.read(stroke, w.mean, MapperKind::Hmm, planeOnly);
     REQUIRE(!r.observations.empty());
     for (const auto& o : r.observations)
         CHECK(o.viewPlaneOnly);
-    MapperParams acrossOnly;
+    MapperParams acrossOnly = MapperParams::thesis();
     acrossOnly.acrossStrokeOnly = true;
     const StrokeReading across = reader.read(stroke, w.mean, MapperKind::Hmm, acrossOnly);
     REQUIRE(!across.observations.empty());
@@ -318,8 +318,14 @@ TEST_CASE("mapper: options: the open border's silhouette dropped, view-plane-onl
     }
     CHECK(countFew > 0);
     CHECK(countFew < countMany);
-    for (const auto& o : reader.read(stroke, w.mean, MapperKind::Hmm).observations)
+    for (const auto& o : reader.read(stroke, w.mean, MapperKind::Hmm, MapperParams::thesis()).observations) {
         CHECK_FALSE(o.viewPlaneOnly);
+        CHECK(o.acrossStroke.isZero());
+    }
+    for (const auto& o : reader.read(stroke, w.mean, MapperKind::Hmm).observations) {
+        CHECK(o.viewPlaneOnly);
+        CHECK_FALSE(o.acrossStroke.isZero());
+    }
 
     // With the current face's own contours (here the mean face, whose labelled lip lies exactly
     // under the stroke) among the candidates, the HMM maps onto the lip's own vertices.
