@@ -17,7 +17,9 @@
 //      - Simple (4.6.3): each point to the nearest of the current face's own contours.
 //      Every mapper adapts the chosen candidate to the stroke in screen space (4.6.2): the
 //      observation is the candidate moved along the view plane onto the stroke point, keeping
-//      the candidate's depth.
+//      the candidate's depth. By default (MapperParams::acrossStrokeOnly, viewPlaneOnly) only
+//      its offset across the stroke in the view plane is pinned; MapperParams::thesis() pins
+//      the whole adapted position.
 //
 // Complexity per stroke of n densified points, each with at most m candidates (m <=
 // MapperParams::maxCandidatesPerPoint), over a cloud of M candidates in the box:
