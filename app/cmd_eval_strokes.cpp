@@ -25,9 +25,10 @@ namespace {
 struct EvalStrokesCommand {
     std::string model, dataset, json, output, views = "front,profile,34", mappers = "nearest,heuristic,hmm,simple";
     double noise = 1.0, extreme = 1.0, errorScale = 10.0;
-    int size = 1024, renders = 2, maxFaces = 0;
+    int size = 1024, renders = 2, maxFaces = 0, similarFaces = 0, rereads = 0;
     std::uint64_t seed = 1;
-    bool noCorrelation = false, quiet = false, noProject = false;
+    bool noCorrelation = false, quiet = false, noProject = false, ownContours = false, thesisObservations = false;
+    std::string oracle = "none";
     double supersedeRadius = sketch::TrackingOptions {}.supersedeRadius;
 };
 
@@ -48,13 +49,15 @@ void printRecords(const std::vector<evaluation::StrokeEvalRecord>& records)
     std::cout << std::fixed << std::left << std::setw(9) << "view" << std::setw(11) << "mapper" << std::right << std::setw(7) << "faces"
               << std::setw(9) << "strokes" << std::setw(8) << "unread" << std::setw(10) << "observed" << std::setw(10) << "mean mm"
               << std::setw(14) << "mean face mm" << std::setw(8) << "ratio" << std::setw(10) << "read ms" << std::setw(10) << "apply ms"
+              << std::setw(10) << "plane mm" << std::setw(10) << "depth mm" << std::setw(8) << "<=1mm" << std::setw(8) << "<=3mm"
               << "\n";
     for (const auto& r : records)
         std::cout << std::left << std::setw(9) << r.view << std::setw(11) << r.mapper << std::right << std::setw(7) << r.faces
                   << std::setw(9) << r.strokes << std::setw(8) << r.unread + r.failed << std::setw(10) << std::setprecision(0)
                   << r.observedVertices << std::setprecision(2) << std::setw(10) << r.meanMm << std::setw(14) << r.meanFaceMm
                   << std::setprecision(3) << std::setw(8) << r.ratio << std::setprecision(1) << std::setw(10) << r.readMs << std::setw(10)
-                  << r.applyMs << "\n";
+                  << r.applyMs << std::setprecision(2) << std::setw(10) << r.planeMm << std::setw(10) << r.depthMm << std::setw(8)
+                  << r.within1Mm << std::setw(8) << r.within3Mm << "\n";
 }
 
 void runEvalStrokes(const EvalStrokesCommand& c)
@@ -87,6 +90,12 @@ void runEvalStrokes(const EvalStrokesCommand& c)
     o.correlation = !c.noCorrelation;
     o.tracking.supersedeRadius = c.supersedeRadius;
     o.tracking.projectOntoFaceSpace = !c.noProject;
+    if (c.thesisObservations)
+        o.params = sketch::MapperParams::thesis();
+    o.params.ownContours = c.ownContours;
+    o.params.similarFaces = c.similarFaces;
+    o.rereads = c.rereads;
+    o.oracle = evaluation::parseStrokeOracle(c.oracle);
     o.keepFaces = c.output.empty() ? 0 : c.renders;
     if (!c.quiet)
         o.progress = [](const std::string& line) { std::cout << "# " << line << std::endl; };
@@ -106,10 +115,13 @@ void runEvalStrokes(const EvalStrokesCommand& c)
             records.push_back({ { "view", r.view }, { "mapper", r.mapper }, { "noise_px", r.noisePx }, { "faces", r.faces },
                 { "mean_mm", r.meanMm }, { "ratio", r.ratio }, { "extreme", r.extreme }, { "mean_face_mm", r.meanFaceMm },
                 { "strokes", r.strokes }, { "unread", r.unread }, { "failed", r.failed }, { "observed_vertices", r.observedVertices },
-                { "read_ms", r.readMs }, { "apply_ms", r.applyMs } });
+                { "read_ms", r.readMs }, { "apply_ms", r.applyMs }, { "plane_mm", r.planeMm }, { "depth_mm", r.depthMm },
+                { "within_1mm", r.within1Mm }, { "within_3mm", r.within3Mm } });
         const nlohmann::json doc { { "model", c.model }, { "dataset", c.dataset }, { "vertices", m.vertexCount() },
             { "image_size", c.size }, { "seed", c.seed }, { "correlation", !c.noCorrelation }, { "supersede_radius_mm", c.supersedeRadius },
-            { "project_onto_face_space", !c.noProject }, { "results", records } };
+            { "project_onto_face_space", !c.noProject }, { "view_plane_only", o.params.viewPlaneOnly }, { "own_contours", c.ownContours },
+            { "across_stroke", o.params.acrossStrokeOnly }, { "similar_faces", c.similarFaces }, { "rereads", c.rereads },
+            { "oracle", c.oracle }, { "results", records } };
         writeFileAtomically(c.json, [&](std::ostream& out) { out << doc.dump(1) << "\n"; });
         std::cout << "wrote " << c.json << "\n";
     }
@@ -161,6 +173,18 @@ void addEvalStrokesCommand(CLI::App& eval)
         ->capture_default_str()
         ->check(CLI::Range(0.0, 1000.0));
     cmd->add_flag("--no-project", c->noProject, "Tracking: keep the strokes' own positions instead of projecting them onto the face space");
+    cmd->add_flag("--thesis-observations", c->thesisObservations,
+        "Observations pin the stroke point in 3D (thesis 4.6.2) instead of the offset across the stroke in its view plane");
+    cmd->add_option("--similar-faces", c->similarFaces, "Candidates only of this many training faces nearest the current face (0: all)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 100000));
+    cmd->add_option("--rereads", c->rereads, "Read each stroke again this many times against the face its reading rebuilt")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 10));
+    cmd->add_flag("--own-contours", c->ownContours, "The current face's own contours join the candidate cloud");
+    cmd->add_option("--oracle", c->oracle,
+           "Diagnosis: give the tracking model the mapped vertices at the true depth (true-depth) or true position (true-position)")
+        ->capture_default_str();
     cmd->add_option("--json", c->json, "Write the records to this JSON file");
     cmd->add_option("-o,--output", c->output, "Folder for colour-coded error renders (blue to red)");
     cmd->add_option("--renders", c->renders, "Test faces to render")->capture_default_str();

@@ -28,9 +28,37 @@ Eigen::VectorXd vertexErrors(const Eigen::VectorXd& face, const Mesh& truth)
 struct Sums {
     double mean = 0, meanFace = 0, observed = 0, readMs = 0, applyMs = 0;
     int faces = 0, strokes = 0, unread = 0, failed = 0;
+    double planeMm = 0, depthMm = 0, within1 = 0, within3 = 0;
+    long observations = 0;
 };
 
+Eigen::Vector3d axisOf(const Eigen::Matrix<double, 2, 3>& P)
+{
+    return P.row(0).transpose().cross(P.row(1).transpose()).normalized();
+}
+
 } // namespace
+
+const char* strokeOracleName(StrokeOracle oracle)
+{
+    switch (oracle) {
+    case StrokeOracle::None:
+        return "none";
+    case StrokeOracle::TrueDepth:
+        return "true-depth";
+    case StrokeOracle::TruePosition:
+        return "true-position";
+    }
+    return "unknown";
+}
+
+StrokeOracle parseStrokeOracle(const std::string& text)
+{
+    for (StrokeOracle o : { StrokeOracle::None, StrokeOracle::TrueDepth, StrokeOracle::TruePosition })
+        if (text == strokeOracleName(o))
+            return o;
+    fail("oracle '", text, "' is none of none, true-depth, true-position");
+}
 
 StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data, const StrokeEvalOptions& options)
 {
@@ -104,8 +132,38 @@ StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data
                         ++s.unread;
                         continue;
                     }
+                    const Eigen::Matrix<double, 2, 3>& P = reading.viewPlane;
+                    const Eigen::Vector3d axis = axisOf(P);
+                    for (sketch::VertexObservation& o : reading.observations) {
+                        const Eigen::Vector3d truth = traced.V.row(o.vertex).transpose();
+                        const double plane = (P * (o.position - truth)).norm();
+                        s.planeMm += plane;
+                        s.depthMm += std::abs(axis.dot(o.position - truth));
+                        s.within1 += plane <= 1.0;
+                        s.within3 += plane <= 3.0;
+                        ++s.observations;
+                        if (options.oracle == StrokeOracle::TrueDepth)
+                            o.position += axis * axis.dot(truth - o.position);
+                        else if (options.oracle == StrokeOracle::TruePosition)
+                            o.position = truth;
+                    }
                     clock.restart();
                     tracking.apply(reading, apply);
+                    for (int r = 0; r < options.rereads; ++r) {
+                        sketch::StrokeReading again;
+                        try {
+                            again = reader.read(stroke->stroke, tracking.faceMesh(), kind, options.params);
+                        } catch (const Error&) {
+                            break;
+                        }
+                        if (again.observations.empty())
+                            break;
+                        if (options.oracle == StrokeOracle::TruePosition)
+                            for (sketch::VertexObservation& o : again.observations)
+                                o.position = traced.V.row(o.vertex).transpose();
+                        tracking.undo();
+                        tracking.apply(again, apply);
+                    }
                     s.applyMs += clock.milliseconds();
                 }
                 const Eigen::VectorXd e = vertexErrors(tracking.face(), traced);
@@ -146,6 +204,13 @@ StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data
             const int read = s.strokes - s.failed;
             r.readMs = read > 0 ? s.readMs / read : 0;
             r.applyMs = read - s.unread > 0 ? s.applyMs / (read - s.unread) : 0;
+            if (s.observations > 0) {
+                const double n = static_cast<double>(s.observations);
+                r.planeMm = s.planeMm / n;
+                r.depthMm = s.depthMm / n;
+                r.within1Mm = s.within1 / n;
+                r.within3Mm = s.within3 / n;
+            }
             result.records.push_back(r);
         }
     return result;

@@ -31,6 +31,19 @@ struct StrokeEvalData {
     std::vector<Mesh> testFaces; ///< held-out faces, sketched and scored
 };
 
+/// What the tracking model is given for each read stroke (a diagnosis of where the error comes
+/// from: identity, depth, or the reconstruction itself).
+enum class StrokeOracle {
+    None,         ///< the reading as it is (the product)
+    TrueDepth,    ///< the mapped vertices, each at its position adapted to the stroke but with the
+                  ///< traced face's depth along the view axis (identity and in-plane error only)
+    TruePosition, ///< the mapped vertices at the traced face's positions (identity error only)
+};
+
+/// "none", "true-depth", "true-position"; parseStrokeOracle throws Error naming other text.
+const char* strokeOracleName(StrokeOracle oracle);
+StrokeOracle parseStrokeOracle(const std::string& text);
+
 struct StrokeEvalOptions {
     std::vector<std::pair<std::string, ViewAngles>> views = { { "front", { 0, 0 } }, { "profile", { 90, 0 } }, { "34", { 45, 0 } } };
     bool allViews = true; ///< also every view's strokes together (view "all")
@@ -40,6 +53,12 @@ struct StrokeEvalOptions {
     sketch::SimulateOptions simulate; ///< angles ignored (from `views`); seed + face index per face
     sketch::TrackingOptions tracking;
     bool correlation = true;
+    /// Each stroke is read again this many times against the face its previous reading rebuilt,
+    /// that reading replacing the previous one (the tracking model's undo, then apply): mapping
+    /// and reconstruction iterated (sketch::readIterated).
+    int rereads = 0;
+    /// Diagnosis only: replace parts of each reading by the truth (StrokeOracle).
+    StrokeOracle oracle = StrokeOracle::None;
     /// Keep per-vertex errors and reconstructions of the first this many test faces (renders).
     int keepFaces = 0;
     /// Called after each (face, view) with a line of progress; may be empty.
@@ -59,6 +78,14 @@ struct StrokeEvalRecord {
     int failed = 0;                 ///< strokes the reader threw on
     double observedVertices = 0;    ///< mean per face at the end
     double readMs = 0, applyMs = 0; ///< mean per stroke
+    /// Of every observation of every read stroke, against the traced face's vertex it names:
+    /// the mean distance in the stroke's view plane (mm; how far the stroke point lies from that
+    /// vertex's image: the identity error), and the mean absolute depth error along the view
+    /// axis (mm) of the observed position. Before any oracle replaces them.
+    double planeMm = 0, depthMm = 0;
+    /// Fraction of observations whose vertex's traced image lies within 1 mm / 3 mm of the
+    /// stroke point in the view plane.
+    double within1Mm = 0, within3Mm = 0;
 };
 
 /// A kept face's result (StrokeEvalOptions::keepFaces).

@@ -59,6 +59,8 @@ void MapperParams::validate() const
     positive("depthToleranceMm", depthToleranceMm);
     if (borderRings < 0 || borderRings > 16)
         fail("mapper parameter borderRings = ", borderRings, " must be in [0, 16]");
+    if (similarFaces < 0)
+        fail("mapper parameter similarFaces = ", similarFaces, " must be at least 0");
     if (maxCandidatesPerPoint < 1)
         fail("mapper parameter maxCandidatesPerPoint = ", maxCandidatesPerPoint, " must be at least 1");
     positive("sigmaS", sigmaS);
@@ -77,6 +79,21 @@ namespace {
 constexpr int kRings = 4; // 4.8.4: k = 4
 } // namespace
 
+Eigen::Vector3d acrossStrokeAt(const std::vector<Eigen::Vector3d>& world, std::size_t i, const Eigen::Vector3d& axis)
+{
+    if (world.size() < 2 || i >= world.size())
+        return Eigen::Vector3d::Zero();
+    // The tangent over a few points either side: densified points a few pixels apart carry
+    // the stroke's jitter in their direction.
+    constexpr std::size_t kSpan = 2;
+    const std::size_t a = i >= kSpan ? i - kSpan : 0, b = std::min(world.size() - 1, i + kSpan);
+    Eigen::Vector3d t = world[b] - world[a];
+    t -= axis * axis.dot(t);
+    if (!t.allFinite() || t.norm() < 1e-9)
+        return Eigen::Vector3d::Zero();
+    return axis.cross(t.normalized()).normalized();
+}
+
 struct StrokeReader::Impl {
     Impl(gpu::Device& device, const stats::FaceModel& model, const std::vector<Mesh>& faces, std::vector<std::uint32_t> flagsIn)
         : flags(std::move(flagsIn))
@@ -85,6 +102,10 @@ struct StrokeReader::Impl {
         , device(device)
     {
         curvature.setPositions(meshMajorPositions(faces));
+        facePositions.resize(static_cast<Eigen::Index>(faces.size()), 3 * model.vertexCount());
+        for (std::size_t f = 0; f < faces.size(); ++f)
+            for (Eigen::Index v = 0; v < model.vertexCount(); ++v)
+                facePositions.row(static_cast<Eigen::Index>(f)).segment<3>(3 * v) = faces[f].V.row(v).cast<float>();
         curvature.run();
         cloud.emplace(device, curvature, flags);
         faceCount = static_cast<std::uint32_t>(faces.size());
@@ -124,6 +145,7 @@ struct StrokeReader::Impl {
     std::vector<int> borderHops; // per vertex: rings from the open border (kBorderScan: further)
 
     std::vector<std::uint32_t> flags;
+    Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> facePositions; // faces by 3#V
     GpuCurvature curvature;
     std::optional<GpuCandidates> cloud;
     RingDistances rings;
@@ -211,6 +233,21 @@ StrokeReading StrokeReader::read(const Stroke& stroke, const Mesh& currentFace, 
                 cloud.push_back(c);
             }
     }
+    if (kind != MapperKind::Simple && params.similarFaces > 0 && params.similarFaces < static_cast<int>(impl_->faceCount)) {
+        Eigen::RowVectorXf current(3 * nv);
+        for (Eigen::Index v = 0; v < nv; ++v)
+            current.segment<3>(3 * v) = currentFace.V.row(v).cast<float>();
+        std::vector<std::pair<double, std::uint32_t>> distance(impl_->faceCount);
+        for (std::uint32_t f = 0; f < impl_->faceCount; ++f)
+            distance[f] = { static_cast<double>((impl_->facePositions.row(f) - current).squaredNorm()), f };
+        std::partial_sort(distance.begin(), distance.begin() + params.similarFaces, distance.end());
+        std::vector<bool> keep(impl_->faceCount + 1, false);
+        keep[impl_->faceCount] = true; // the current face's own contours (ownContours)
+        for (int k = 0; k < params.similarFaces; ++k)
+            keep[distance[static_cast<std::size_t>(k)].second] = true;
+        cloud.erase(std::remove_if(cloud.begin(), cloud.end(), [&](const Candidate& c) { return c.mesh >= keep.size() || !keep[c.mesh]; }),
+            cloud.end());
+    }
     if (params.borderRings > 0)
         cloud.erase(std::remove_if(cloud.begin(), cloud.end(),
                         [&](const Candidate& c) {
@@ -254,8 +291,12 @@ StrokeReading StrokeReader::read(const Stroke& stroke, const Mesh& currentFace, 
     }
     reading.chosen = mapping.chosen;
     reading.observations = std::move(mapping.observations);
-    for (VertexObservation& o : reading.observations)
+    const Eigen::Vector3d axis = viewAxis(camera);
+    for (VertexObservation& o : reading.observations) {
         o.viewPlaneOnly = params.viewPlaneOnly;
+        if (params.acrossStrokeOnly)
+            o.acrossStroke = acrossStrokeAt(projected.world, static_cast<std::size_t>(o.strokePoint), axis);
+    }
     if (withCandidates < n)
         reading.message
             = cat(n - withCandidates, " of ", n, " points have no contour candidate within ", radiusPx, " px and were not read");

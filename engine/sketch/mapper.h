@@ -17,7 +17,9 @@
 //      - Simple (4.6.3): each point to the nearest of the current face's own contours.
 //      Every mapper adapts the chosen candidate to the stroke in screen space (4.6.2): the
 //      observation is the candidate moved along the view plane onto the stroke point, keeping
-//      the candidate's depth.
+//      the candidate's depth. By default (MapperParams::acrossStrokeOnly, viewPlaneOnly) only
+//      its offset across the stroke in the view plane is pinned; MapperParams::thesis() pins
+//      the whole adapted position.
 //
 // Complexity per stroke of n densified points, each with at most m candidates (m <=
 // MapperParams::maxCandidatesPerPoint), over a cloud of M candidates in the box:
@@ -81,8 +83,26 @@ struct MapperParams {
     /// mesh per stroke.
     bool ownContours = false;
     /// Observations pin only the image of the vertex in the view (its depth is left to the
-    /// model) instead of the candidate's depth adapted to the stroke (4.6.2).
-    bool viewPlaneOnly = false;
+    /// model) instead of the candidate's depth adapted to the stroke (4.6.2). On by default
+    /// (with acrossStrokeOnly): the candidate's depth is another face's; thesis() turns it off.
+    bool viewPlaneOnly = true;
+    /// Observations pin a vertex only across the stroke in the view plane (and its depth,
+    /// unless viewPlaneOnly), not along it (VertexObservation::acrossStroke). Beyond the
+    /// thesis, whose 4.6.2 pins the stroke point itself: which vertex of a contour lies under
+    /// which point is the least certain part of a mapping (a mapped vertex is typically a
+    /// neighbour along the line), and pinning it there drags the contour's vertices along the
+    /// stroke into each other's places. On by default: with viewPlaneOnly, `eval strokes`
+    /// (1 px noise, 4 test faces) takes the HMM from 0.73 / 0.76 / 0.70 / 0.56 of the mean face's
+    /// error (front / profile / 34 / all views) to 0.65 / 0.60 / 0.54 / 0.44 on the synthetic
+    /// high set, and from 0.82 / 0.78 / 0.94 / 0.71 to 0.83 / 0.57 / 0.78 / 0.56 on an ICT
+    /// import (docs/sketching.md); thesis() turns it off.
+    bool acrossStrokeOnly = true;
+    /// When positive, only the candidates of this many training faces count: those nearest the
+    /// current face (mean squared vertex distance). 0: every face (the thesis' cloud). Once the
+    /// face approaches the sketched one (after earlier strokes, or on a second reading of the
+    /// same stroke), the faces most like it place each vertex nearest where the sketched face
+    /// has it, so the vertex under a stroke point is more often the right one.
+    int similarFaces = 0;
 
     // --- HMM (4.8.5) ---
     double sigmaS = 0.4;             ///< initial probability, eq. 4.45
@@ -112,8 +132,16 @@ struct MapperParams {
     /// radius overshoots the stroke's end. Not in the thesis (its radius was one threshold).
     double heuristicEndpointRadiusTau = 0.5;
 
-    /// The thesis' values (the defaults).
-    static MapperParams thesis() { return {}; }
+    /// The thesis' values: the defaults, but observations pinning the stroke point in 3D
+    /// (4.6.2: the candidate adapted to the stroke, with its depth) instead of across the stroke
+    /// in the view plane.
+    static MapperParams thesis()
+    {
+        MapperParams p;
+        p.viewPlaneOnly = false;
+        p.acrossStrokeOnly = false;
+        return p;
+    }
     /// Throws Error naming the first field that is not positive/finite where it must be.
     void validate() const;
 };

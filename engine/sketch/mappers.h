@@ -62,6 +62,11 @@ EndpointTerms endpointTerms(const MappingProblem& problem, const std::vector<std
 Eigen::Vector3d adaptToStroke(
     const Camera& camera, const Eigen::Vector2d& screen, const Eigen::Vector3d& world, const Candidate& candidate);
 
+/// The unit direction across a stroke at its point i (world, in the view plane: the view axis
+/// crossed with the stroke's tangent over two points either side), from the stroke's projected
+/// points; zero where the stroke has no direction there (one point, or points on one spot).
+Eigen::Vector3d acrossStrokeAt(const std::vector<Eigen::Vector3d>& world, std::size_t i, const Eigen::Vector3d& axis);
+
 /// Several observations of one vertex merged into their mean position (in the order given),
 /// strokePoint the first one's. Output in ascending vertex order.
 std::vector<VertexObservation> averagePerVertex(const std::vector<VertexObservation>& observations);

@@ -17,6 +17,13 @@ struct VertexObservation {
     /// Only the image of `position` in the stroke's view counts (measured with the view's x and
     /// y rows, stats::Observations::addProjectedVertex); its depth is left to the model.
     bool viewPlaneOnly = false;
+    /// When not zero (a unit vector in the view plane, world): the direction across the stroke
+    /// at its point. Then of the image only the offset across the stroke counts, not the
+    /// position along it: a stroke says where a contour runs, not which of its vertices lies
+    /// under which point, so a vertex mapped one neighbour along the line is not pulled onto
+    /// its neighbour's place. With viewPlaneOnly the observation is that one direction; without
+    /// it, that direction and the depth along the view axis.
+    Eigen::Vector3d acrossStroke = Eigen::Vector3d::Zero();
     int strokePoint = -1; ///< index of the (densified) stroke point it came from
 };
 

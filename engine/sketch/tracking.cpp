@@ -36,6 +36,10 @@ void addCombined(stats::Observations& observations, Eigen::Index vertex, const s
         observations.addProjectedVertex(vertex, constraints[0].A.topRows<2>(), constraints[0].b.head<2>());
         return;
     }
+    if (constraints.size() == 1 && constraints[0].rows == 1) {
+        observations.addVertexAlong(vertex, constraints[0].A.row(0).transpose(), constraints[0].b[0]);
+        return;
+    }
     int rows = 0;
     for (const VertexConstraint& c : constraints)
         rows += c.rows;
@@ -62,9 +66,10 @@ void addCombined(stats::Observations& observations, Eigen::Index vertex, const s
         const Eigen::Matrix<double, 2, 3> P = svd.matrixV().leftCols<2>().transpose();
         observations.addProjectedVertex(vertex, P, P * x);
     } else {
-        // All rows along one direction cannot come from whole views (each has 2 rows); keep
-        // the first constraint rather than invent a plane.
-        observations.addProjectedVertex(vertex, constraints[0].A.topRows<2>(), constraints[0].b.head<2>());
+        // All rows along one direction (across-stroke constraints of strokes drawn along one
+        // another): that direction.
+        const Eigen::Vector3d d = svd.matrixV().col(0);
+        observations.addVertexAlong(vertex, d, d.dot(x));
     }
 }
 
@@ -117,7 +122,7 @@ void TrackingModel::apply(const StrokeReading& reading, const ApplyOptions& opti
         fail("tracking: the stroke's reading pins no vertex");
     const bool anyPlane = [&] {
         for (const VertexObservation& o : reading.observations)
-            if (o.viewPlaneOnly)
+            if (o.viewPlaneOnly || !o.acrossStroke.isZero())
                 return true;
         return false;
     }();
@@ -132,6 +137,10 @@ void TrackingModel::apply(const StrokeReading& reading, const ApplyOptions& opti
             fail("tracking: observations[", i, "].vertex ", o.vertex, " outside [0, ", nv, ")");
         if (!o.position.allFinite())
             fail("tracking: observations[", i, "].position of vertex ", o.vertex, " is not finite");
+        if (!o.acrossStroke.isZero()
+            && (!o.acrossStroke.allFinite() || std::abs(o.acrossStroke.norm() - 1) > 1e-6
+                || (planeValid && std::abs(viewAxisOf(P).dot(o.acrossStroke)) > 1e-6)))
+            fail("tracking: observations[", i, "].acrossStroke of vertex ", o.vertex, " is not a unit vector in the view plane");
         if (!seen.insert(o.vertex).second)
             fail("tracking: observations[", i, "]: vertex ", o.vertex, " is observed twice by one stroke");
     }
@@ -154,7 +163,17 @@ void TrackingModel::apply(const StrokeReading& reading, const ApplyOptions& opti
         VertexConstraint c;
         c.stroke = stroke;
         c.viewAxis = axis;
-        if (o.viewPlaneOnly) {
+        if (!o.acrossStroke.isZero()) {
+            // Across the stroke, and the depth unless the depth is left to the model: rows
+            // orthonormal because acrossStroke lies in the view plane.
+            c.rows = o.viewPlaneOnly ? 1 : 2;
+            c.A.row(0) = o.acrossStroke.transpose();
+            c.A.row(1) = axis.transpose();
+            c.A.row(2).setZero();
+            if (c.rows == 1)
+                c.A.row(1).setZero();
+            c.b = c.A * o.position;
+        } else if (o.viewPlaneOnly) {
             c.rows = 2;
             c.A.topRows<2>() = P;
             c.b.head<2>() = P * o.position;

@@ -4,7 +4,9 @@
 //
 // Per vertex the model holds either nothing (missing, the thesis' -1) or a set of linear
 // constraints A x = b on its position x (mm): three rows for a vertex a stroke pins in 3D, two
-// (the view's x and y rows) for one pinned only in a view's image plane. After each stroke:
+// (the view's x and y rows) for one pinned only in a view's image plane, two (across the stroke
+// in the view plane, and the view axis) or one (across the stroke) for an across-stroke
+// observation (VertexObservation::acrossStroke). After each stroke:
 //   1. supersede (beyond the thesis, whose 4.7.3 and 4.10 name the problem): every constraint of
 //      an older stroke drawn from a similar view (view directions within `supersedeAngleDeg`)
 //      on a vertex the new stroke maps to, or whose current position lies within
@@ -49,7 +51,7 @@ struct TrackingOptions {
     stats::Correlation correlation = stats::Correlation::Joint;
 };
 
-/// One linear constraint block on one vertex: A x = b (rows orthonormal, 2 or 3 of them).
+/// One linear constraint block on one vertex: A x = b (rows orthonormal, 1 to 3 of them).
 struct VertexConstraint {
     Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
     Eigen::Vector3d b = Eigen::Vector3d::Zero();

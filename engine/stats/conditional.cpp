@@ -43,6 +43,25 @@ void Observations::addProjectedVertex(Eigen::Index vertex, const Eigen::Matrix<d
     size_ += 2;
 }
 
+void Observations::addVertexAlong(Eigen::Index vertex, const Eigen::Vector3d& direction, double value)
+{
+    if (vertex < 0)
+        fail("Observations::addVertexAlong: vertex ", vertex, " is negative");
+    requireFinite(direction, "Observations::addVertexAlong: direction");
+    if (!std::isfinite(value))
+        fail("Observations::addVertexAlong: value ", value, " of vertex ", vertex, " is not finite");
+    if (std::abs(direction.norm() - 1.0) > 1e-9)
+        fail("Observations::addVertexAlong: the direction for vertex ", vertex, " has length ", direction.norm(), ", not 1");
+    Block b;
+    b.first = 3 * vertex;
+    b.width = 3;
+    b.rows = 1;
+    b.P.row(0) = direction.transpose();
+    b.y(0) = value;
+    blocks_.push_back(b);
+    size_ += 1;
+}
+
 void Observations::addCoordinate(Eigen::Index index, double value)
 {
     if (index < 0)
@@ -132,6 +151,8 @@ Eigen::MatrixXd Observations::apply(const Eigen::MatrixXd& A) const
             PA.row(row) = A.row(b.first);
         else if (b.rows == 3)
             PA.middleRows<3>(row) = A.middleRows<3>(b.first);
+        else if (b.rows == 1)
+            PA.row(row).noalias() = b.P.row(0) * A.middleRows<3>(b.first);
         else
             PA.middleRows<2>(row).noalias() = b.P.topRows<2>() * A.middleRows<3>(b.first);
         row += b.rows;

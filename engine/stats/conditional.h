@@ -47,6 +47,10 @@ public:
     /// rows (|P P^T - I| <= 1e-9), e.g. the x and y rows of a rotation.
     void addProjectedVertex(Eigen::Index vertex, const Eigen::Matrix<double, 2, 3>& P, const Eigen::Vector2d& image);
 
+    /// One direction of vertex v: d . t(3v .. 3v+2) = value, d a unit vector (|d| - 1 within
+    /// 1e-9), e.g. the direction across a drawn line in its view plane.
+    void addVertexAlong(Eigen::Index vertex, const Eigen::Vector3d& direction, double value);
+
     /// One coordinate: t(index) = value (for vectors that are not faces, e.g. the latent
     /// vectors of the segment correlation, thesis 4.2.5).
     void addCoordinate(Eigen::Index index, double value);
@@ -80,7 +84,7 @@ private:
     struct Block {
         Eigen::Index first = 0;                      // first coordinate touched
         int width = 0;                               // coordinates touched: 1 or 3
-        int rows = 0;                                // measurements: 1, 2 or 3
+        int rows = 0;                                // measurements: 1, 2 or 3 (1 of a vertex: a direction)
         Eigen::Matrix3d P = Eigen::Matrix3d::Zero(); // rows by width used
         Eigen::Vector3d y = Eigen::Vector3d::Zero(); // rows used
     };

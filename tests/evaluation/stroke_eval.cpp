@@ -61,6 +61,32 @@ TEST_CASE("stroke_eval: sketching test faces with their own strokes beats the me
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
 
+TEST_CASE("stroke_eval: the diagnostics: mapped vertices at their true positions rebuild better, and the errors of the mapping")
+{
+    const evaluation::StrokeEvalData d = smallData();
+    evaluation::StrokeEvalOptions o;
+    o.views = { { "front", { 0, 0 } } };
+    o.mappers = { sketch::MapperKind::Hmm };
+    o.params = sketch::MapperParams::thesis(); // 3D observations, so that the true depth changes them
+    const evaluation::StrokeEvalRecord read = evaluation::evaluateStrokes(test::device(), d, o).records.at(0);
+    o.oracle = evaluation::StrokeOracle::TrueDepth;
+    const evaluation::StrokeEvalRecord depth = evaluation::evaluateStrokes(test::device(), d, o).records.at(0);
+    o.oracle = evaluation::StrokeOracle::TruePosition;
+    const evaluation::StrokeEvalRecord truth = evaluation::evaluateStrokes(test::device(), d, o).records.at(0);
+    INFO("read " << read.ratio << ", true depth " << depth.ratio << ", true position " << truth.ratio);
+    CHECK(truth.meanMm < depth.meanMm);
+    CHECK(depth.meanMm < read.meanMm);
+    // The mapping's errors are measured before any oracle, and are those of a real mapping.
+    CHECK(read.planeMm > 0);
+    CHECK(read.depthMm > 0);
+    CHECK(read.within1Mm <= read.within3Mm);
+    CHECK(read.within3Mm > 0);
+    CHECK(read.within3Mm <= 1);
+    CHECK(evaluation::parseStrokeOracle("true-depth") == evaluation::StrokeOracle::TrueDepth);
+    REQUIRE_THROWS_WITH(evaluation::parseStrokeOracle("truth"), Catch::Contains("'truth'"));
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
 TEST_CASE("stroke_eval: no test faces, no mappers or another topology are refused")
 {
     evaluation::StrokeEvalData d = smallData();

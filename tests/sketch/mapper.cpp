@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "fixture.h"
 #include "geometry/graph.h"
+#include "sketch/mappers.h"
 #include "test_common.h"
 
 #include <algorithm>
@@ -77,6 +78,26 @@ TEST_CASE("mapper: mapper names round-trip and unknown names are refused")
     MapperParams p;
     p.sigmaC = 0;
     REQUIRE_THROWS_WITH(p.validate(), Catch::Contains("sigmaC = 0"));
+    MapperParams q;
+    q.similarFaces = -1;
+    REQUIRE_THROWS_WITH(q.validate(), Catch::Contains("similarFaces = -1"));
+}
+
+TEST_CASE("mapper: the direction across a stroke is perpendicular to it in the view plane")
+{
+    const Eigen::Vector3d axis(0, 0, 1);
+    // A diagonal line in the front view plane, drawn with some depth change.
+    std::vector<Eigen::Vector3d> line;
+    for (int i = 0; i < 9; ++i)
+        line.push_back(Eigen::Vector3d(i, i, 0.3 * i));
+    for (std::size_t i : { std::size_t(0), std::size_t(4), std::size_t(8) }) {
+        const Eigen::Vector3d n = acrossStrokeAt(line, i, axis);
+        CHECK(n.norm() == Approx(1));
+        CHECK(std::abs(n.dot(axis)) < 1e-12);
+        CHECK(std::abs(n.dot(Eigen::Vector3d(1, 1, 0))) < 1e-12);
+    }
+    CHECK(acrossStrokeAt({ Eigen::Vector3d(1, 2, 3) }, 0, axis).isZero());
+    CHECK(acrossStrokeAt({ Eigen::Vector3d(1, 2, 3), Eigen::Vector3d(1, 2, 5) }, 0, axis).isZero()); // along the view axis only
 }
 
 TEST_CASE("mapper: a stroke traced along the mean face's upper lip maps to the upper lip")
@@ -271,14 +292,40 @@ TEST_CASE("mapper: options: the open border's silhouette dropped, view-plane-onl
 
     const std::vector<int>& lip = w.contours.at("lip_upper_outer");
     const Stroke stroke = traceOf(w.mean, lip);
-    MapperParams planeOnly;
+    MapperParams planeOnly = MapperParams::thesis();
     planeOnly.viewPlaneOnly = true;
     const StrokeReading r = reader.read(stroke, w.mean, MapperKind::Hmm, planeOnly);
     REQUIRE(!r.observations.empty());
     for (const auto& o : r.observations)
         CHECK(o.viewPlaneOnly);
-    for (const auto& o : reader.read(stroke, w.mean, MapperKind::Hmm).observations)
+    MapperParams acrossOnly = MapperParams::thesis();
+    acrossOnly.acrossStrokeOnly = true;
+    const StrokeReading across = reader.read(stroke, w.mean, MapperKind::Hmm, acrossOnly);
+    REQUIRE(!across.observations.empty());
+    for (const auto& o : across.observations) {
+        CHECK(o.acrossStroke.norm() == Approx(1));
+        CHECK(std::abs((across.viewPlane * o.acrossStroke).norm() - 1) < 1e-9); // in the view plane
+    }
+    // Candidates of the faces most like the current one only: fewer candidates per point.
+    MapperParams similar;
+    similar.similarFaces = 2;
+    const StrokeReading few = reader.read(stroke, w.mean, MapperKind::Nearest, similar);
+    const StrokeReading many = reader.read(stroke, w.mean, MapperKind::Nearest);
+    long countFew = 0, countMany = 0;
+    for (std::size_t i = 0; i < few.candidateCounts.size(); ++i) {
+        countFew += few.candidateCounts[i];
+        countMany += many.candidateCounts[i];
+    }
+    CHECK(countFew > 0);
+    CHECK(countFew < countMany);
+    for (const auto& o : reader.read(stroke, w.mean, MapperKind::Hmm, MapperParams::thesis()).observations) {
         CHECK_FALSE(o.viewPlaneOnly);
+        CHECK(o.acrossStroke.isZero());
+    }
+    for (const auto& o : reader.read(stroke, w.mean, MapperKind::Hmm).observations) {
+        CHECK(o.viewPlaneOnly);
+        CHECK_FALSE(o.acrossStroke.isZero());
+    }
 
     // With the current face's own contours (here the mean face, whose labelled lip lies exactly
     // under the stroke) among the candidates, the HMM maps onto the lip's own vertices.

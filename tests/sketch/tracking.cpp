@@ -235,6 +235,52 @@ TEST_CASE("tracking: two view-plane constraints combine by least squares")
     stats::Observations same;
     addCombined(same, 5, { a, a });
     REQUIRE(same.size() == 2);
+    // Two across-stroke constraints along one direction stay one measurement along it.
+    VertexConstraint c, e;
+    c.rows = e.rows = 1;
+    c.A.row(0) = e.A.row(0) = Eigen::RowVector3d(0, 1, 0);
+    c.b[0] = 2;
+    e.b[0] = 3;
+    stats::Observations along;
+    addCombined(along, 5, { c, e });
+    REQUIRE(along.size() == 1);
+    REQUIRE(std::abs(along.values()[0]) == Approx(2.5));
+}
+
+TEST_CASE("tracking: an across-stroke observation pins the vertex across the stroke only, not along it")
+{
+    const auto& t = test::trainedSynth();
+    const auto lips = contourVertices("lip");
+    // A horizontal stroke seen from the front: across it is y.
+    const Eigen::Vector3d across(0, 1, 0);
+    auto acrossReading = [&](const Eigen::Vector3d& offset, bool planeOnly) {
+        StrokeReading r = reading(lips, 0, kFront, offset);
+        for (VertexObservation& o : r.observations) {
+            o.viewPlaneOnly = planeOnly;
+            o.acrossStroke = across;
+        }
+        return r;
+    };
+    for (bool planeOnly : { true, false }) {
+        INFO("view-plane only " << planeOnly);
+        TrackingModel a(t.model), b(t.model);
+        a.apply(acrossReading(Eigen::Vector3d::Zero(), planeOnly));
+        b.apply(acrossReading(Eigen::Vector3d(2.5, 0, 0), planeOnly)); // slid along the stroke
+        CHECK((a.face() - b.face()).cwiseAbs().maxCoeff() < 1e-9);
+        const auto& c = a.state().constraints[lips[0]];
+        REQUIRE(c.size() == 1);
+        CHECK(c[0].rows == (planeOnly ? 1 : 2));
+        // It moves the lips towards the face they trace.
+        CHECK(meanError(a.face(), 0, lips) < meanError(t.model.meanFace, 0, lips));
+    }
+    // A direction along the view axis is refused, leaving the state as it was.
+    TrackingModel tracking(t.model);
+    tracking.apply(reading(lips, 1, kFront));
+    const TrackingState before = tracking.state();
+    StrokeReading bad = acrossReading(Eigen::Vector3d::Zero(), true);
+    bad.observations[2].acrossStroke = Eigen::Vector3d(0, 0, 1);
+    REQUIRE_THROWS_WITH(tracking.apply(bad), Catch::Contains("observations[2].acrossStroke") && Catch::Contains("view plane"));
+    REQUIRE(sameState(tracking.state(), before));
 }
 
 TEST_CASE("tracking: bad readings throw and leave the state exactly as it was")

@@ -127,6 +127,30 @@ TEST_CASE("conditional: a vertex seen in 2D keeps its image and gets its depth f
     CHECK((mean.segment<3>(3) - Eigen::Vector3d(0.5, 0.25, -1.0)).norm() < 1e-12);
 }
 
+TEST_CASE("conditional: a vertex measured along one direction keeps that coordinate, the model fills the rest")
+{
+    Random random(35);
+    const Ppca model = randomPpca(random, 24, 3, 2.0, 1.0, 0.3);
+    const Eigen::Vector3d d = random.normalMatrix(3, 1).normalized();
+    Observations obs;
+    obs.addVertexAlong(4, d, 1.5);
+    obs.addVertex(1, Eigen::Vector3d(0.5, 0.25, -1.0));
+    REQUIRE(obs.size() == 4);
+    // The fast P A agrees with the dense P.
+    const Eigen::MatrixXd A = random.normalMatrix(24, 5);
+    CHECK((obs.apply(A) - obs.denseP(24) * A).norm() < 1e-12);
+    const Eigen::VectorXd mean = conditionalMean(model, obs, condition(model, obs));
+    CHECK(std::abs(d.dot(mean.segment<3>(12)) - 1.5) < 1e-12);
+    // The other two directions are the model's: not those of the vertex moved along d only.
+    const Eigen::VectorXd unmeasured = conditionalMean(model, Observations {}, condition(model, Observations {}));
+    CHECK(((mean.segment<3>(12) - unmeasured.segment<3>(12)) - d * d.dot(mean.segment<3>(12) - unmeasured.segment<3>(12))).norm() > 1e-6);
+
+    Observations bad;
+    REQUIRE_THROWS_WITH(bad.addVertexAlong(2, 2 * d, 1.0), Catch::Contains("length"));
+    REQUIRE_THROWS_WITH(bad.addVertexAlong(2, d, std::numeric_limits<double>::infinity()), Catch::Contains("not finite"));
+    REQUIRE(bad.empty());
+}
+
 TEST_CASE("conditional: the winner is the component that drew the face")
 {
     Random random(34);
