@@ -8,7 +8,8 @@
 // Pose mode (Tab; thesis 5.3-5.5, engine/pose): left-button strokes are pose strokes, read for
 // feature points and completed to a pose by gui::Document's pose::PoseEditor; the completed
 // feature points and the ones the strokes identified are drawn as points. The timeline panel
-// adds keyframes from the current pose at the current time, scrubs, plays (at a frame rate,
+// adds keyframes from the current pose at the current time, moves and deletes them (session
+// actions like the rest, so undoable), scrubs, plays (at a frame rate,
 // looping or not) through pose::TimelinePlayer, each frame rebuilt by the mapping, and exports
 // the played timeline as glTF (pose/animation.h), as `facesketch animate` does.
 
@@ -48,6 +49,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -213,6 +215,10 @@ private:
     void applyPoseStroke(const sketch::Stroke& stroke);
     void addPoseAction(const sketch::PoseAction& action, const std::string& what);
     void addKeyframe();
+    /// Moves the selected keyframe to the current time, or deletes it (session version 3
+    /// actions, so both replay and undo like every other action).
+    void moveKeyframe();
+    void deleteKeyframe();
     void switchInterpretation();
     void setTime(double seconds);
     void togglePlay();
@@ -286,6 +292,8 @@ private:
     bool poseMode_ = false;
     bool alternative_ = false;
     double time_ = 0; ///< the timeline's current time, s
+    /// The keyframe the timeline panel's buttons act on (its time), NaN for none.
+    double selectedKey_ = std::numeric_limits<double>::quiet_NaN();
     double fps_ = 30; ///< playback and glTF export frame rate
     bool playing_ = false, loop_ = true;
     double lastTick_ = -1;
@@ -619,6 +627,10 @@ void App::onKey(int key, int action, int mods)
         setTime(std::max(0.0, time_ + (key == GLFW_KEY_UP ? 1.0 : -1.0)));
     } else if (!ctrl && poseMode_ && key == GLFW_KEY_K && action == GLFW_PRESS) {
         addKeyframe();
+    } else if (!ctrl && poseMode_ && key == GLFW_KEY_M && action == GLFW_PRESS) {
+        moveKeyframe();
+    } else if (!ctrl && poseMode_ && key == GLFW_KEY_DELETE && action == GLFW_PRESS) {
+        deleteKeyframe();
     } else if (!ctrl && poseMode_ && key == GLFW_KEY_SPACE && action == GLFW_PRESS) {
         togglePlay();
     } else if (!ctrl && poseMode_ && key == GLFW_KEY_A && action == GLFW_PRESS) {
@@ -776,6 +788,52 @@ void App::addKeyframe()
     std::ostringstream text;
     text << std::fixed << std::setprecision(3) << "keyframe at " << a.time << " s (" << doc_->poseEditor()->keyframes().size()
          << " keyframes)";
+    say(text.str());
+    std::cout << "gui: " << text.str() << std::endl;
+}
+
+void App::moveKeyframe()
+{
+    if (std::isnan(selectedKey_)) {
+        say("select a keyframe first (its button in the timeline panel)");
+        return;
+    }
+    sketch::PoseAction a;
+    a.kind = sketch::PoseActionKind::MoveKeyframe;
+    a.time = selectedKey_;
+    a.to = std::round(time_ * fps_) / fps_; // on the frame grid, as addKeyframe
+    const size_t before = doc_->poseAppliedCount();
+    addPoseAction(a, "keyframe move");
+    if (doc_->poseAppliedCount() == before)
+        return;
+    selectedKey_ = a.to;
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(3) << "keyframe moved from " << a.time << " s to " << a.to << " s";
+    say(text.str());
+    std::cout << "gui: " << text.str() << std::endl;
+}
+
+void App::deleteKeyframe()
+{
+    // Without a selection, the keyframe under the time cursor.
+    if (const pose::PoseEditor* e = doc_->poseEditor(); std::isnan(selectedKey_) && e && doc_->poseAppliedCount() > 0)
+        for (const pose::Keyframe& k : e->keyframes())
+            if (k.time == std::round(time_ * fps_) / fps_)
+                selectedKey_ = k.time;
+    if (std::isnan(selectedKey_)) {
+        say("select a keyframe first (its button in the timeline panel)");
+        return;
+    }
+    sketch::PoseAction a;
+    a.kind = sketch::PoseActionKind::DeleteKeyframe;
+    a.time = selectedKey_;
+    const size_t before = doc_->poseAppliedCount();
+    addPoseAction(a, "keyframe delete");
+    if (doc_->poseAppliedCount() == before)
+        return;
+    selectedKey_ = std::numeric_limits<double>::quiet_NaN();
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(3) << "keyframe at " << a.time << " s deleted";
     say(text.str());
     std::cout << "gui: " << text.str() << std::endl;
 }
@@ -1299,13 +1357,28 @@ void App::timelinePanel()
     ImGui::Checkbox("show timeline", &timelineShown_);
     if (!keys.empty()) {
         ImGui::TextUnformatted("keyframes:");
+        bool selectedExists = false;
         for (size_t i = 0; i < keys.size(); ++i) {
             ImGui::SameLine();
             char label[32];
-            std::snprintf(label, sizeof label, "%.2f s##k%zu", keys[i].time, i);
-            if (ImGui::SmallButton(label))
+            const bool selected = keys[i].time == selectedKey_;
+            selectedExists = selectedExists || selected;
+            std::snprintf(label, sizeof label, "%s%.2f s##k%zu", selected ? "> " : "", keys[i].time, i);
+            if (ImGui::SmallButton(label)) {
+                selectedKey_ = keys[i].time; // selects it: the buttons below act on it
                 setTime(keys[i].time);
+            }
         }
+        if (!selectedExists) // undone, deleted or moved by undo/redo
+            selectedKey_ = std::numeric_limits<double>::quiet_NaN();
+        ImGui::BeginDisabled(!selectedExists);
+        ImGui::SameLine();
+        if (ImGui::SmallButton("move selected here (M)"))
+            moveKeyframe();
+        ImGui::SameLine();
+        if (ImGui::SmallButton("delete selected (Del)"))
+            deleteKeyframe();
+        ImGui::EndDisabled();
     } else {
         ImGui::TextDisabled("no keyframes: pose the face with strokes, then K adds the pose at the current time");
     }

@@ -4,6 +4,7 @@
 #include "sketch/projection.h"
 #include "sketch/stroke_candidates.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace facesketch::pose {
@@ -50,6 +51,25 @@ void PoseEditor::apply(const sketch::PoseAction& action)
                 fail("keyframe: there is a keyframe at ", action.time, " s already");
         next.keyframes.push_back({ action.time, next.pose });
         break;
+    case sketch::PoseActionKind::MoveKeyframe:
+    case sketch::PoseActionKind::DeleteKeyframe: {
+        const bool move = action.kind == sketch::PoseActionKind::MoveKeyframe;
+        const auto key
+            = std::find_if(next.keyframes.begin(), next.keyframes.end(), [&](const Keyframe& k) { return k.time == action.time; });
+        if (key == next.keyframes.end())
+            fail(move ? "keyframe move" : "keyframe delete", ": there is no keyframe at ", action.time, " s");
+        if (!move) {
+            next.keyframes.erase(key);
+            break;
+        }
+        if (!std::isfinite(action.to) || action.to < 0)
+            fail("keyframe move: time ", action.to, " is not a time >= 0 in seconds");
+        for (const Keyframe& other : next.keyframes)
+            if (other.time == action.to && &other != &*key)
+                fail("keyframe move: there is a keyframe at ", action.to, " s already");
+        key->time = action.to;
+        break;
+    }
     case sketch::PoseActionKind::Clear:
         next.strokes.clear();
         next.reading = {};
@@ -94,7 +114,7 @@ Timeline PoseEditor::timeline(double tension) const
 
 void replayPoseActions(PoseEditor& editor, const sketch::Session& session)
 {
-    static const char* const names[] = { "pose-stroke", "keyframe", "pose-clear" };
+    static const char* const names[] = { "pose-stroke", "keyframe", "pose-clear", "keyframe-move", "keyframe-delete" };
     for (std::size_t i = 0; i < session.poseActions.size(); ++i) {
         const sketch::PoseAction& action = session.poseActions[i];
         try {

@@ -45,8 +45,8 @@ public:
     PoseEditor(const PoseModel& model, const Mesh& neutral, const PoseStrokeOptions& options = {});
 
     /// Applies one action and forgets any undone ones. Throws Error, leaving the state as it was,
-    /// if a stroke is invalid or hits no cluster, or a keyframe's time is not finite, negative or
-    /// already a keyframe's.
+    /// if a stroke is invalid or hits no cluster, a keyframe's (or a move's new) time is not
+    /// finite, negative or already a keyframe's, or a move or delete names no keyframe's time.
     void apply(const sketch::PoseAction& action);
     /// Back to the state before the last action; false (and no change) if there is none.
     bool undo();

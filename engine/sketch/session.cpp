@@ -294,8 +294,34 @@ Session parseSession(const std::string& text, const std::string& where)
         } else if (type == "pose-clear") {
             a.object({ "type" });
             pose.kind = PoseActionKind::Clear;
+        } else if (type == "keyframe-move" || type == "keyframe-delete") {
+            if (version < 3)
+                a["type"].bad(cat("\"", type, "\" came with version 3, this file is version ", version));
+            const bool move = type == "keyframe-move";
+            if (move)
+                a.object({ "type", "time", "to" });
+            else
+                a.object({ "type", "time" });
+            pose.kind = move ? PoseActionKind::MoveKeyframe : PoseActionKind::DeleteKeyframe;
+            pose.time = a["time"].number();
+            const auto key = std::find_if(keyframes.begin(), keyframes.end(), [&](const auto& k) { return k.first == pose.time; });
+            if (key == keyframes.end())
+                a["time"].bad(cat("no keyframe at ", pose.time, " s to ", move ? "move" : "delete", " at this point of the session"));
+            if (move) {
+                pose.to = a["to"].number();
+                if (pose.to < 0)
+                    a["to"].bad(cat("a keyframe time in seconds cannot be negative, found ", pose.to));
+                for (const auto& [t, at] : keyframes)
+                    if (t == pose.to && t != pose.time)
+                        a["to"].bad(cat(pose.to, " s is also the time of the keyframe at actions[", at, "]"));
+                *key = { pose.to, i };
+            } else {
+                keyframes.erase(key);
+            }
         } else {
-            a["type"].bad(cat("expected \"stroke\", \"pose-stroke\", \"keyframe\" or \"pose-clear\", found \"", type, "\""));
+            a["type"].bad(cat("expected \"stroke\", \"pose-stroke\", \"keyframe\", \"keyframe-move\", \"keyframe-delete\" or "
+                              "\"pose-clear\", found \"",
+                type, "\""));
         }
         s.poseActions.push_back(std::move(pose));
     }
@@ -358,6 +384,10 @@ std::string sessionToJson(const Session& session)
                     { "reading", { { "interpretation", a.alternative ? "alternative" : "primary" } } } });
             else if (a.kind == PoseActionKind::Keyframe)
                 actions.push_back({ { "type", "keyframe" }, { "time", a.time } });
+            else if (a.kind == PoseActionKind::MoveKeyframe)
+                actions.push_back({ { "type", "keyframe-move" }, { "time", a.time }, { "to", a.to } });
+            else if (a.kind == PoseActionKind::DeleteKeyframe)
+                actions.push_back({ { "type", "keyframe-delete" }, { "time", a.time } });
             else
                 actions.push_back({ { "type", "pose-clear" } });
         }
@@ -424,8 +454,10 @@ bool operator==(const PoseAction& a, const PoseAction& b)
         return false;
     if (a.kind == PoseActionKind::Stroke)
         return a.stroke == b.stroke && a.alternative == b.alternative;
-    if (a.kind == PoseActionKind::Keyframe)
+    if (a.kind == PoseActionKind::Keyframe || a.kind == PoseActionKind::DeleteKeyframe)
         return a.time == b.time;
+    if (a.kind == PoseActionKind::MoveKeyframe)
+        return a.time == b.time && a.to == b.to;
     return true;
 }
 

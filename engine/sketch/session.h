@@ -2,10 +2,11 @@
 // A sketching session on disk (docs/session-format.md): the model and dataset it was drawn
 // against and the ordered list of what the user did, so that the interactive app and the CLI
 // (`facesketch sketch --session FILE`, `facesketch pose`, `facesketch animate`) replay it to the
-// identical face. JSON, "format": "facesketch-session", "version": 2 (version 1, shape strokes
-// only, still loads). Version 2 adds posing (thesis 5.3-5.5): pose strokes, keyframes and
-// clearing the pose, as actions of their own "type" in the same ordered list, and the pose model
-// file, the face to pose and the timeline's tension at the top level.
+// identical face. JSON, "format": "facesketch-session", "version": 3 (versions 1 and 2 still
+// load). Version 2 added posing (thesis 5.3-5.5): pose strokes, keyframes and clearing the pose,
+// as actions of their own "type" in the same ordered list, and the pose model file, the face to
+// pose and the timeline's tension at the top level. Version 3 adds moving and deleting a
+// keyframe, so that editing the timeline replays and undoes like everything else.
 
 #include "sketch/stroke.h"
 
@@ -16,7 +17,7 @@
 namespace facesketch::sketch {
 
 inline constexpr const char* kSessionFormat = "facesketch-session";
-inline constexpr int kSessionVersion = 2;
+inline constexpr int kSessionVersion = 3;
 /// The oldest version parseSession still reads.
 inline constexpr int kSessionOldestVersion = 1;
 
@@ -44,6 +45,10 @@ enum class PoseActionKind {
     Stroke,   ///< a pose stroke: read for feature points (thesis 5.3), the pose completed from them
     Keyframe, ///< the current completed pose becomes a keyframe at `time`
     Clear,    ///< the pose strokes so far are forgotten: the face is neutral again
+    /// (version 3) the keyframe at `time` moves to `to`, keeping its pose
+    MoveKeyframe,
+    /// (version 3) the keyframe at `time` is removed
+    DeleteKeyframe,
 };
 
 struct PoseAction {
@@ -53,8 +58,11 @@ struct PoseAction {
     /// Stroke: complete the pose with the alternative mixture (thesis figs. 5.10, 5.11) instead of
     /// the primary one; the pose after a stroke follows that stroke's choice.
     bool alternative = false;
-    /// Keyframe: seconds, >= 0; no two keyframes of a session share a time.
+    /// Keyframe: seconds, >= 0; no two keyframes of a session share a time. MoveKeyframe and
+    /// DeleteKeyframe: the time of the keyframe they change, which must exist.
     double time = 0;
+    /// MoveKeyframe: the new time, >= 0, no other keyframe's.
+    double to = 0;
     /// How many shape strokes (Session::actions) come before this action in the file's one
     /// ordered list; non-decreasing along poseActions.
     int afterStrokes = 0;

@@ -2,9 +2,9 @@
 # Pose mode and the timeline as a person would use them (issue 14): under an X server (Xvfb when
 # there is no DISPLAY), real input events from xdotool: Tab (pose mode), K (a keyframe at 0 s from
 # the neutral pose), a pose stroke along a smiling upper lip, Up (time 1 s), K (a second keyframe),
-# Space (play, looping from the end), Space (pause), Ctrl+Z and Ctrl+Shift+Z, Ctrl+S (to
+# Up, K and Delete (a third keyframe at 2 s, deleted again), Down, Space (play, looping from the end), Space (pause), Ctrl+Z and Ctrl+Shift+Z, Ctrl+S (to
 # --session-out), Ctrl+E (the posed face), Ctrl+G (the timeline as .glb), Ctrl+Q. Then: the session
-# holds the three pose actions; `facesketch pose` replaying it gives the app's posed face to
+# holds the five pose actions; `facesketch pose` replaying it gives the app's posed face to
 # 1e-5 mm, `facesketch animate` the identical .glb; the posed face moved from the neutral one; the
 # autosave on exit restores the pose actions at the next start.
 # Usage: pose_input.sh FACESKETCH WORK
@@ -37,17 +37,26 @@ key Up
 wait_for "gui: time 1.000 s"
 key k
 wait_for "gui: keyframe at 1.000 s \(2 keyframes\)"
+# A third keyframe at 2 s, deleted again with Delete (the keyframe under the time cursor).
+key Up
+wait_for "gui: time 2.000 s"
+key k
+wait_for "gui: keyframe at 2.000 s \(3 keyframes\)"
+key Delete
+wait_for "gui: keyframe at 2.000 s deleted"
+key Down
+wait_for "gui: time 1.000 s"
 key space
 wait_for "gui: playing from 1.000 s"
 sleep 0.5
 key space
 wait_for "gui: paused at [01]\.[0-9]+ s"
 key ctrl+z
-wait_for "gui: undone, 0 strokes in effect, 2 pose actions"
+wait_for "gui: undone, 0 strokes in effect, 4 pose actions"
 key ctrl+shift+z
-wait_for "gui: redone, 0 strokes in effect, 3 pose actions"
+wait_for "gui: redone, 0 strokes in effect, 5 pose actions"
 key ctrl+s
-wait_for "gui: saved .*app.json \(0 strokes\) with 3 pose actions"
+wait_for "gui: saved .*app.json \(0 strokes\) with 5 pose actions"
 key ctrl+e
 wait_for "gui: exported .*app.obj"
 key ctrl+g
@@ -67,7 +76,7 @@ cmp -s "$WORK/app.glb" "$WORK/replay.glb" || fail "the app's .glb differs from f
 # The autosave on exit holds the pose actions too, and the next start restores them.
 "$FACESKETCH" gui "$WORK/faces.model" "$WORK/faces" --poses "$WORK/posed.poses" --size 1000x760 --restore --quit-after-frames 3 \
   > "$WORK/restore.log" 2>&1 || fail "the restoring app exited with code $?: $(tail -n 5 "$WORK/restore.log")"
-grep -q "gui: restored 3 pose actions from the recovery file" "$WORK/restore.log" || fail "the app did not restore the pose actions"
+grep -q "gui: restored 5 pose actions from the recovery file" "$WORK/restore.log" || fail "the app did not restore the pose actions"
 "$FACESKETCH" pose "$WORK/posed.poses" --session "$WORK/state/recovery-session.json" -o "$WORK/recovered.obj" > /dev/null \
   || fail "facesketch pose could not replay the recovery file"
 cmp -s "$WORK/app.obj" "$WORK/recovered.obj" || fail "the recovery file poses another face than the app's"
@@ -78,7 +87,7 @@ import json, sys
 work = sys.argv[1]
 s = json.load(open(f"{work}/app.json"))
 kinds = [(a["type"], a.get("time")) for a in s["actions"]]
-assert kinds == [("keyframe", 0), ("pose-stroke", None), ("keyframe", 1)], f"actions {kinds}"
+assert kinds == [("keyframe", 0), ("pose-stroke", None), ("keyframe", 1), ("keyframe", 2), ("keyframe-delete", 2)], f"actions {kinds}"
 assert s["poses"] and s["face"], "the session names no pose model or face"
 
 def vertices(path):

@@ -29,6 +29,23 @@ sketch::PoseAction keyframe(double time)
     return a;
 }
 
+sketch::PoseAction moveKeyframe(double time, double to)
+{
+    sketch::PoseAction a;
+    a.kind = sketch::PoseActionKind::MoveKeyframe;
+    a.time = time;
+    a.to = to;
+    return a;
+}
+
+sketch::PoseAction deleteKeyframe(double time)
+{
+    sketch::PoseAction a;
+    a.kind = sketch::PoseActionKind::DeleteKeyframe;
+    a.time = time;
+    return a;
+}
+
 sketch::PoseAction clear()
 {
     sketch::PoseAction a;
@@ -130,6 +147,43 @@ TEST_CASE("pose session: undo and redo restore bit-identical states, and a bad a
     REQUIRE_THROWS_WITH(b.apply(keyframe(-1.0)), Catch::Contains("keyframe: time -1"));
     REQUIRE(b.keyframes().size() == 1);
     REQUIRE_THROWS_WITH(b.timeline(), Catch::Contains("1 keyframe(s)"));
+}
+
+TEST_CASE("pose session: keyframes move and are deleted with their poses, undoably, and bad edits change nothing")
+{
+    const test::PoseWorld& w = test::poseWorld();
+    const auto smile = lipStrokes(w, "smile_open");
+    PoseEditor e(w.model, w.neutral);
+    e.apply(keyframe(0.0)); // the neutral pose
+    e.apply(strokeAction(smile[0]));
+    e.apply(keyframe(1.0)); // the smile
+    const Eigen::VectorXd smilePose = e.pose();
+    REQUIRE(smilePose.norm() > 0);
+    const Vertices face = e.face().V;
+    e.apply(moveKeyframe(1.0, 2.5));
+    REQUIRE(e.keyframes().size() == 2);
+    REQUIRE(e.face().V == face); // editing the timeline does not pose the face
+    const Timeline moved = e.timeline();
+    REQUIRE(moved.end() == 2.5);
+    REQUIRE(moved.sample(2.5) == smilePose);
+    REQUIRE(moved.sample(0.0).norm() == 0);
+    // Bad edits: refused, nothing changed.
+    REQUIRE_THROWS_WITH(e.apply(moveKeyframe(1.0, 3.0)), Catch::StartsWith("keyframe move: there is no keyframe at 1 s"));
+    REQUIRE_THROWS_WITH(e.apply(moveKeyframe(2.5, 0.0)), Catch::StartsWith("keyframe move: there is a keyframe at 0 s already"));
+    REQUIRE_THROWS_WITH(e.apply(moveKeyframe(2.5, -1.0)), Catch::StartsWith("keyframe move: time -1"));
+    REQUIRE_THROWS_WITH(e.apply(deleteKeyframe(7.0)), Catch::StartsWith("keyframe delete: there is no keyframe at 7 s"));
+    REQUIRE(e.timeline().end() == 2.5);
+    e.apply(deleteKeyframe(0.0));
+    REQUIRE(e.keyframes().size() == 1);
+    REQUIRE(e.keyframes()[0].time == 2.5);
+    REQUIRE(e.keyframes()[0].pose == smilePose);
+    REQUIRE(e.undo());
+    REQUIRE(e.keyframes().size() == 2);
+    REQUIRE(e.undo());
+    REQUIRE(e.timeline().end() == 1.0);
+    REQUIRE(e.timeline().sample(1.0) == smilePose);
+    REQUIRE(e.redo());
+    REQUIRE(e.timeline().end() == 2.5);
 }
 
 TEST_CASE("pose session: replay names a bad action as the file does, and the timeline passes through the keyframes")

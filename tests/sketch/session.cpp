@@ -322,7 +322,9 @@ TEST_CASE("session: bad pose actions are named by their JSON path, and nothing i
         { "/actions/1/reading/interpretation", "maybe", "actions[1].reading.interpretation: expected \"primary\" or \"alternative\"" },
         { "/actions/1/stroke/points/0/x", nullptr, "actions[1].stroke.points[0].x: expected a number" },
         { "/actions/5/stroke", json::object(), "actions[5].stroke: unknown field" },
-        { "/actions/5/type", "pose-undo", "actions[5].type: expected \"stroke\", \"pose-stroke\", \"keyframe\" or \"pose-clear\"" },
+        { "/actions/5/type", "pose-undo",
+            "actions[5].type: expected \"stroke\", \"pose-stroke\", \"keyframe\", \"keyframe-move\", \"keyframe-delete\" or "
+            "\"pose-clear\"" },
         { "/timeline/tension", 1.5, "timeline.tension: must lie in [0, 1]" },
         { "/timeline/speed", 1.0, "timeline.speed: unknown field" },
         { "/poses", "", "poses: empty path" },
@@ -351,6 +353,60 @@ TEST_CASE("session: bad pose actions are named by their JSON path, and nothing i
     bad.poseActions[3].stroke.points.clear();
     REQUIRE_THROWS_WITH(saveSession(dir / "s.json", bad), Catch::Contains("actions[6].stroke.points: a stroke needs at least one point"));
     REQUIRE(fileText(dir / "s.json") == before);
+}
+
+TEST_CASE("session: keyframe moves and deletes round trip (version 3), and bad ones are named")
+{
+    using nlohmann::json;
+    test::TempDir dir;
+    Session s = posingExample(); // keyframes at 0 s and 2.5 s
+    PoseAction move;
+    move.kind = PoseActionKind::MoveKeyframe;
+    move.time = 2.5;
+    move.to = 4.0;
+    move.afterStrokes = 3;
+    PoseAction del;
+    del.kind = PoseActionKind::DeleteKeyframe;
+    del.time = 0.0;
+    del.afterStrokes = 3;
+    s.poseActions.push_back(move);
+    s.poseActions.push_back(del);
+    saveSession(dir / "s.json", s);
+    REQUIRE(loadSession(dir / "s.json") == s);
+    const json doc = json::parse(fileText(dir / "s.json"));
+    REQUIRE(doc["version"] == 3);
+    REQUIRE(doc["actions"][8] == json { { "type", "keyframe-move" }, { "time", 2.5 }, { "to", 4.0 } });
+    REQUIRE(doc["actions"][9] == json { { "type", "keyframe-delete" }, { "time", 0.0 } });
+    // After the move, 2.5 s is free for a new keyframe and 4 s is taken.
+    json again = doc;
+    again["actions"].push_back({ { "type", "keyframe" }, { "time", 2.5 } });
+    REQUIRE(messageOf(again.dump()).empty());
+    again["actions"].push_back({ { "type", "keyframe" }, { "time", 4.0 } });
+    REQUIRE_THAT(
+        messageOf(again.dump()), Catch::StartsWith("s.json: actions[11].time: 4 s is also the time of the keyframe at actions[8]"));
+    struct Case {
+        std::string pointer;
+        json value;
+        std::string path;
+    };
+    const std::vector<Case> cases = {
+        { "/actions/8/time", 1.0, "actions[8].time: no keyframe at 1 s to move at this point of the session" },
+        { "/actions/9/time", 2.5, "actions[9].time: no keyframe at 2.5 s to delete" },
+        { "/actions/8/to", 0.0, "actions[8].to: 0 s is also the time of the keyframe at actions[2]" },
+        { "/actions/8/to", -2.0, "actions[8].to: a keyframe time in seconds cannot be negative" },
+        { "/actions/9/to", 1.0, "actions[9].to: unknown field" },
+        { "/version", 2, "actions[8].type: \"keyframe-move\" came with version 3, this file is version 2" },
+    };
+    for (const Case& c : cases) {
+        json bad = doc;
+        bad[json::json_pointer(c.pointer)] = c.value;
+        INFO(c.pointer);
+        REQUIRE_THAT(messageOf(bad.dump()), Catch::StartsWith("s.json: " + c.path));
+    }
+    // A move to its own time is allowed (nothing changes).
+    json same = doc;
+    same["actions"][8]["to"] = 2.5;
+    REQUIRE(messageOf(same.dump()).empty());
 }
 
 TEST_CASE("session: a deeply nested or 10 MB-string document is refused before parsing, naming the byte")
