@@ -176,7 +176,7 @@ TEST_CASE("pose session: keyframes move and are deleted with their poses, undoab
     e.apply(deleteKeyframe(0.0));
     REQUIRE(e.keyframes().size() == 1);
     REQUIRE(e.keyframes()[0].time == 2.5);
-    REQUIRE(e.keyframes()[0].pose == smilePose);
+    REQUIRE(e.keyframes()[0].fp == smilePose);
     REQUIRE(e.undo());
     REQUIRE(e.keyframes().size() == 2);
     REQUIRE(e.undo());
