@@ -21,7 +21,8 @@ Completion complete(const stats::Mppca& mixture, const stats::Observations& obse
 {
     if (mixture.size() == 0)
         fail("complete: the completion mixture has no components");
-    if (!(noiseMm >= 0) || !std::isfinite(noiseMm))
+    // isfinite first: an ordered comparison with NaN raises the invalid flag (trapped in tests).
+    if (!std::isfinite(noiseMm) || noiseMm < 0)
         fail("complete: observation noise ", noiseMm, " mm is not a finite value >= 0");
     observed.validate(mixture.dim());
     if (noiseMm == 0)

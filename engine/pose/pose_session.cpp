@@ -15,7 +15,7 @@ PoseEditor::PoseEditor(const PoseModel& model, const Mesh& neutral, const PoseSt
     , options_(options)
 {
     checkFace(model, neutral, "the face to pose");
-    if (!(options.readingNoiseMm >= 0) || !std::isfinite(options.readingNoiseMm))
+    if (!std::isfinite(options.readingNoiseMm) || options.readingNoiseMm < 0)
         fail("pose strokes: reading noise ", options.readingNoiseMm, " mm is not a finite value >= 0");
     clusters_ = fpClusters(model.fps, model.fpTraining, neutral.V, options.clusters);
     State start;

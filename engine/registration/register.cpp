@@ -337,7 +337,8 @@ void checkRegistrationOptions(const RegistrationOptions& options, Eigen::Index t
         fail(where, ": smoothing ", options.smoothing, " outside [0, 1]");
     if (!(options.blendPixels > 0.0) || !(options.maxDisplacement > 0.0))
         fail(where, ": blend width and largest displacement must be positive");
-    if (!(options.grazingCosine >= 0.0 && options.grazingCosine < 1.0) || !(options.grazingSnap > 0.0))
+    if (std::isnan(options.grazingCosine) || options.grazingCosine < 0.0 || options.grazingCosine >= 1.0 || std::isnan(options.grazingSnap)
+        || options.grazingSnap <= 0.0)
         fail(where, ": grazing cosine ", options.grazingCosine, " outside [0, 1) or snap distance ", options.grazingSnap, " not positive");
     const Eigen::Index end = options.endVertex < 0 ? templateVertices : options.endVertex;
     if (options.firstVertex < 0 || options.firstVertex >= end || end > templateVertices)
