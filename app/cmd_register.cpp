@@ -37,9 +37,9 @@ struct RegisterCommand {
 
 void runRegister(const RegisterCommand& c)
 {
-    const double scanScale = millimetresPer(c.units, "--units");
+    const double scanScale = dataset::millimetresPer(c.units, "--units");
     const dataset::Dataset ds = dataset::openDataset(c.templ);
-    const double templateScale = millimetresPer(ds.manifest.units, (fs::path(c.templ) / "manifest.json").string());
+    const double templateScale = dataset::millimetresPer(ds.manifest.units, (fs::path(c.templ) / "manifest.json").string());
     // The template: the mean training face in the dataset's topology, in mm.
     Mesh templ = meanFace(ds);
     templ.V *= templateScale;

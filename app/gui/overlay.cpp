@@ -13,7 +13,7 @@ Image heatImage(const std::vector<Candidate>& candidates, int width, int height,
 {
     if (width <= 0 || height <= 0)
         fail("overlay: image size ", width, "x", height, " must be positive");
-    if (options.cellPx <= 0 || !(options.sigmaPx >= 0))
+    if (options.cellPx <= 0 || std::isnan(options.sigmaPx) || options.sigmaPx < 0)
         fail("overlay: cell ", options.cellPx, " px and sigma ", options.sigmaPx, " px must be positive");
     const int cw = (width + options.cellPx - 1) / options.cellPx, ch = (height + options.cellPx - 1) / options.cellPx;
     std::vector<double> count(static_cast<size_t>(cw) * ch, 0.0);

@@ -59,14 +59,9 @@ double readLabels(const fs::path& file, Manifest& m)
     double scale = 1;
     if (doc.contains("units")) {
         const auto& u = doc["units"];
-        if (u == "mm")
-            scale = 1;
-        else if (u == "cm")
-            scale = 10;
-        else if (u == "m")
-            scale = 1000;
-        else
-            fail(file.string(), ": units: '", u.dump(), "' is not one of \"mm\", \"cm\", \"m\"");
+        if (!u.is_string())
+            fail(file.string(), ": units: ", u.dump(), " is not a string (\"mm\", \"cm\" or \"m\")");
+        scale = millimetresPer(u.get<std::string>(), file.string());
     }
     for (const char* key : { "landmarks", "mpeg4" })
         if (doc.contains(key)) {

@@ -102,6 +102,17 @@ void checkName(const std::string& where, const std::string& field, const std::st
 
 } // namespace
 
+double millimetresPer(const std::string& units, const std::string& what)
+{
+    if (units == "mm")
+        return 1.0;
+    if (units == "cm")
+        return 10.0;
+    if (units == "m")
+        return 1000.0;
+    fail(what, ": units '", units, "' are not mm, cm or m");
+}
+
 void validateManifest(const Manifest& m, const std::string& where)
 {
     if (m.units != "mm" && m.units != "cm" && m.units != "m")

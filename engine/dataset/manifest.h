@@ -85,6 +85,10 @@ struct Manifest {
 /// Does not touch the file system.
 void validateManifest(const Manifest& manifest, const std::string& where);
 
+/// Millimetres per unit of the manifest units "mm", "cm" or "m" (datasets, scans and their
+/// points all declare one of these). Throws Error "<what>: units '<units>' are not mm, cm or m".
+double millimetresPer(const std::string& units, const std::string& what);
+
 /// Reads and validates a manifest.json. Throws Error naming the file and field.
 Manifest readManifest(const std::filesystem::path& path);
 /// Validates, then writes pretty-printed JSON atomically (core/atomic_file.h). Keys are sorted,

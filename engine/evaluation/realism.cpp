@@ -1,6 +1,7 @@
 #include "evaluation/realism.h"
 
 #include "core/error.h"
+#include "dataset/manifest.h"
 #include "geometry/similarity.h"
 #include "registration/surface_query.h"
 
@@ -15,17 +16,6 @@ namespace facesketch::evaluation {
 namespace {
 
 const char* const kRegions[] = { "eyes", "brows", "nose", "mouth", "chin" };
-
-double unitScale(const std::string& units, const std::string& where)
-{
-    if (units == "mm")
-        return 1.0;
-    if (units == "cm")
-        return 10.0;
-    if (units == "m")
-        return 1000.0;
-    fail(where, ": units '", units, "' are not mm, cm or m");
-}
 
 void requireUsable(const FaceSet& set)
 {
@@ -173,7 +163,7 @@ FaceSet loadFaceSet(const dataset::Dataset& ds)
         set.shapes.middleRows(r, p.rows()) = p;
         r += p.rows();
     }
-    set.shapes *= unitScale(m.units, where + "/manifest.json");
+    set.shapes *= dataset::millimetresPer(m.units, where + "/manifest.json");
     if (set.shapes.rows() < 2)
         fail(where, ": ", set.shapes.rows(), " samples; the realism measures need at least 2");
 
@@ -245,7 +235,7 @@ RealismReport evaluateRealism(const FaceSet& data, const FaceSet& reference, con
 {
     requireUsable(data);
     requireUsable(reference);
-    if (!(options.regionRadius > 0))
+    if (std::isnan(options.regionRadius) || options.regionRadius <= 0)
         fail("eval realism: region radius ", options.regionRadius, " mm is not positive");
 
     RealismReport report;

@@ -3,12 +3,14 @@
 #include "core/error.h"
 #include "core/random.h"
 
+#include <cmath>
+
 namespace facesketch::pose {
 
 std::vector<sketch::Stroke> simulatePoseStrokes(
     const Mesh& posed, const Mesh& neutral, const std::map<std::string, std::vector<int>>& contours, const PoseStrokeSimulation& options)
 {
-    if (!(options.noisePx >= 0))
+    if (std::isnan(options.noisePx) || options.noisePx < 0)
         fail("pose strokes: noise ", options.noisePx, " px is not >= 0");
     const OrbitView view = frameMeshView(neutral, parseView("front"), options.imageSize, options.imageSize);
     const Camera camera = orbitCamera(view);

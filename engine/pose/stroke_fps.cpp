@@ -84,7 +84,7 @@ FpClusters fpClusters(const FeaturePoints& fps, const Eigen::MatrixXd& fpTrainin
         fail("FP training poses: ", fpTraining.rows(), " rows, at least 2 are needed for a cluster's spread");
     if (!fpTraining.allFinite())
         fail("FP training poses: not finite");
-    if (!(options.minStdMm >= 0) || !std::isfinite(options.minStdMm))
+    if (!std::isfinite(options.minStdMm) || options.minStdMm < 0)
         fail("FP clusters: minStdMm ", options.minStdMm, " is not >= 0");
 
     FpClusters clusters;
@@ -133,11 +133,11 @@ FpClusters fpClusters(const FeaturePoints& fps, const Eigen::MatrixXd& fpTrainin
 
 FpReading identifyFps(const FpClusters& clusters, const std::vector<PoseStrokePoints>& strokes, const FpReadingOptions& options)
 {
-    if (!(options.maxMahalanobis > 0) || !std::isfinite(options.maxMahalanobis))
+    if (!std::isfinite(options.maxMahalanobis) || options.maxMahalanobis <= 0)
         fail("pose strokes: maxMahalanobis ", options.maxMahalanobis, " is not > 0");
-    if (!(options.endpointWeight >= 1) || !std::isfinite(options.endpointWeight))
+    if (!std::isfinite(options.endpointWeight) || options.endpointWeight < 1)
         fail("pose strokes: endpointWeight ", options.endpointWeight, " is not >= 1");
-    if (!(options.nudgeMm >= 0) || !std::isfinite(options.nudgeMm))
+    if (!std::isfinite(options.nudgeMm) || options.nudgeMm < 0)
         fail("pose strokes: nudgeMm ", options.nudgeMm, " is not >= 0");
     if (clusters.size() == 0)
         fail("pose strokes: no feature point clusters");

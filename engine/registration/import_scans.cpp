@@ -21,21 +21,10 @@ Mesh meanFace(const dataset::Dataset& dataset)
     return mesh;
 }
 
-double millimetresPer(const std::string& units, const std::string& what)
-{
-    if (units == "mm")
-        return 1.0;
-    if (units == "cm")
-        return 10.0;
-    if (units == "m")
-        return 1000.0;
-    fail(what, ": units '", units, "' are not mm, cm or m");
-}
-
 ScanImport importScans(const fs::path& folder, const dataset::Dataset& templ, const fs::path& output, const ScanImportOptions& options)
 {
-    const double scanScale = millimetresPer(options.units, "scan units");
-    const double templateScale = millimetresPer(templ.manifest.units, (templ.folder / "manifest.json").string());
+    const double scanScale = dataset::millimetresPer(options.units, "scan units");
+    const double templateScale = dataset::millimetresPer(templ.manifest.units, (templ.folder / "manifest.json").string());
     if (!fs::is_directory(folder))
         fail(folder.string(), ": not a folder");
     std::vector<fs::path> scans;

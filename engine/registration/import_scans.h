@@ -31,9 +31,6 @@ namespace facesketch::registration {
 /// The mean of a dataset's training faces in its topology and units. Throws Error if it has none.
 Mesh meanFace(const dataset::Dataset& dataset);
 
-/// Millimetres per unit of "mm", "cm" or "m"; throws Error naming `what` otherwise.
-double millimetresPer(const std::string& units, const std::string& what);
-
 struct ScanImportOptions {
     std::uint64_t seed = 1;   ///< role shuffle
     std::string units = "mm"; ///< units of the scans and their points

@@ -134,6 +134,14 @@ TEST_CASE("import_meshes: bad input names the file and line and writes nothing")
     test::writeText(dir / "in" / "landmarks.json", R"({"landmarks": {"prn": "tip"}})");
     refused("landmarks.json: landmarks.prn: '\"tip\"' is not a vertex index");
 
+    fresh();
+    test::writeText(dir / "in" / "landmarks.json", R"({"units": "inch"})");
+    refused("landmarks.json: units 'inch' are not mm, cm or m");
+
+    fresh();
+    test::writeText(dir / "in" / "landmarks.json", R"({"units": 10})");
+    refused("landmarks.json: units: 10 is not a string");
+
     REQUIRE_THROWS_WITH(importMeshes(dir / "missing", dir / "out"), Catch::Contains("missing: does not exist"));
     fs::create_directories(dir / "empty");
     REQUIRE_THROWS_WITH(importMeshes(dir / "empty", dir / "out"), Catch::Contains("no .obj or .ply meshes"));

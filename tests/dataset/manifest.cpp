@@ -219,3 +219,12 @@ TEST_CASE("manifest: a number too large for a double is refused as invalid JSON,
         feenableexcept(traps);
     REQUIRE_THAT(message, Catch::Contains("manifest.json: not valid JSON") && Catch::Contains("number overflow"));
 }
+
+TEST_CASE("manifest: millimetresPer scales mm, cm and m and names anything else")
+{
+    REQUIRE(millimetresPer("mm", "x") == 1.0);
+    REQUIRE(millimetresPer("cm", "x") == 10.0);
+    REQUIRE(millimetresPer("m", "x") == 1000.0);
+    REQUIRE_THROWS_WITH(millimetresPer("inch", "scan.points.json"), "scan.points.json: units 'inch' are not mm, cm or m");
+    REQUIRE_THROWS_WITH(millimetresPer("MM", "--units"), Catch::Contains("--units: units 'MM'"));
+}

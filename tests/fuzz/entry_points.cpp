@@ -108,27 +108,30 @@ bool ictJson(const std::uint8_t* data, std::size_t size)
     }
 }
 
-// First byte even: the rest is a payload, wrapped in a valid header and checksum so that the
-// fuzzer explores the contents (a random change almost never keeps the checksum); odd: the rest
-// is the whole file, as read.
+// The bytes of a checksummed FaceSketch file (the face and pose model files share one frame:
+// magic, version, payload length, payload, FNV-1a of the payload). First byte even: the rest is
+// the payload, wrapped in a valid frame so that the fuzzer explores the contents (a random change
+// almost never keeps the checksum); odd: the rest is the whole file, as read.
+std::string framedFile(const std::uint8_t* data, std::size_t size, const char (&magic)[8], std::uint32_t version)
+{
+    if (data[0] % 2 == 1)
+        return std::string(reinterpret_cast<const char*>(data + 1), size - 1);
+    std::string bytes;
+    const std::uint64_t length = size - 1;
+    const std::uint64_t hash = fnv1a(data + 1, size - 1);
+    bytes.append(magic, 8);
+    bytes.append(reinterpret_cast<const char*>(&version), sizeof version);
+    bytes.append(reinterpret_cast<const char*>(&length), sizeof length);
+    bytes.append(reinterpret_cast<const char*>(data + 1), size - 1);
+    bytes.append(reinterpret_cast<const char*>(&hash), sizeof hash);
+    return bytes;
+}
+
 bool model(const std::uint8_t* data, std::size_t size)
 {
     if (size == 0)
         return false;
-    std::string bytes;
-    if (data[0] % 2 == 0) {
-        const char magic[8] = { 'F', 'S', 'K', 'F', 'A', 'C', 'E', '\0' };
-        const std::uint32_t version = stats::kFaceModelVersion;
-        const std::uint64_t length = size - 1;
-        const std::uint64_t hash = fnv1a(data + 1, size - 1);
-        bytes.append(magic, 8);
-        bytes.append(reinterpret_cast<const char*>(&version), sizeof version);
-        bytes.append(reinterpret_cast<const char*>(&length), sizeof length);
-        bytes.append(reinterpret_cast<const char*>(data + 1), size - 1);
-        bytes.append(reinterpret_cast<const char*>(&hash), sizeof hash);
-    } else {
-        bytes.assign(reinterpret_cast<const char*>(data + 1), size - 1);
-    }
+    const std::string bytes = framedFile(data, size, { 'F', 'S', 'K', 'F', 'A', 'C', 'E', '\0' }, stats::kFaceModelVersion);
     const fs::path file = scratch("input.model", bytes.data(), bytes.size());
     return refusedOrRead([&] { (void)stats::loadFaceModel(file); });
 }
@@ -174,26 +177,12 @@ bool session(const std::uint8_t* data, std::size_t size)
     return refusedOrRead([&] { (void)sketch::loadSession(file); });
 }
 
-// As `model`, for the pose model file (pose/pose_file.h): first byte even, the rest is a payload
-// wrapped in a valid FSKPOSE header and checksum; odd, the whole file as read.
+// As `model`, for the pose model file (pose/pose_file.h).
 bool poseModel(const std::uint8_t* data, std::size_t size)
 {
     if (size == 0)
         return false;
-    std::string bytes;
-    if (data[0] % 2 == 0) {
-        const char magic[8] = { 'F', 'S', 'K', 'P', 'O', 'S', 'E', '\0' };
-        const std::uint32_t version = pose::kPoseModelVersion;
-        const std::uint64_t length = size - 1;
-        const std::uint64_t hash = fnv1a(data + 1, size - 1);
-        bytes.append(magic, 8);
-        bytes.append(reinterpret_cast<const char*>(&version), sizeof version);
-        bytes.append(reinterpret_cast<const char*>(&length), sizeof length);
-        bytes.append(reinterpret_cast<const char*>(data + 1), size - 1);
-        bytes.append(reinterpret_cast<const char*>(&hash), sizeof hash);
-    } else {
-        bytes.assign(reinterpret_cast<const char*>(data + 1), size - 1);
-    }
+    const std::string bytes = framedFile(data, size, { 'F', 'S', 'K', 'P', 'O', 'S', 'E', '\0' }, pose::kPoseModelVersion);
     const fs::path file = scratch("input.poses", bytes.data(), bytes.size());
     return refusedOrRead([&] { (void)pose::loadPoseModel(file); });
 }

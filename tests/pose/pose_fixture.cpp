@@ -84,4 +84,42 @@ double meanError(const Vertices& a, const Vertices& b)
     return (a - b).rowwise().norm().mean();
 }
 
+sketch::PoseAction strokeAction(const sketch::Stroke& stroke)
+{
+    sketch::PoseAction a;
+    a.kind = sketch::PoseActionKind::Stroke;
+    a.stroke = stroke;
+    return a;
+}
+
+sketch::PoseAction keyframeAction(double time)
+{
+    sketch::PoseAction a;
+    a.kind = sketch::PoseActionKind::Keyframe;
+    a.time = time;
+    return a;
+}
+
+sketch::PoseAction moveKeyframeAction(double time, double to)
+{
+    sketch::PoseAction a = keyframeAction(time);
+    a.kind = sketch::PoseActionKind::MoveKeyframe;
+    a.to = to;
+    return a;
+}
+
+sketch::PoseAction deleteKeyframeAction(double time)
+{
+    sketch::PoseAction a = keyframeAction(time);
+    a.kind = sketch::PoseActionKind::DeleteKeyframe;
+    return a;
+}
+
+sketch::PoseAction clearAction()
+{
+    sketch::PoseAction a;
+    a.kind = sketch::PoseActionKind::Clear;
+    return a;
+}
+
 } // namespace facesketch::test

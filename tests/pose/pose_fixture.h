@@ -7,6 +7,7 @@
 #include "dataset/synth/face_generator.h"
 #include "geometry/camera.h"
 #include "pose/pose_model.h"
+#include "sketch/session.h"
 #include "sketch/stroke.h"
 
 #include <string>
@@ -28,6 +29,13 @@ const PoseWorld& poseWorld();
 
 /// A pose stroke tracing `contour` (vertex indices) of `face` in `view`: the vertices' pixels.
 sketch::Stroke traceStroke(const Mesh& face, const std::vector<int>& contour, const OrbitView& view);
+
+/// Pose-session actions as the app and the session file make them (sketch/session.h).
+sketch::PoseAction strokeAction(const sketch::Stroke& stroke);
+sketch::PoseAction keyframeAction(double time);
+sketch::PoseAction moveKeyframeAction(double time, double to);
+sketch::PoseAction deleteKeyframeAction(double time);
+sketch::PoseAction clearAction();
 
 /// Mean distance between corresponding vertices (mm).
 double meanError(const Vertices& a, const Vertices& b);

@@ -13,46 +13,6 @@ using namespace facesketch::pose;
 
 namespace {
 
-sketch::PoseAction strokeAction(const sketch::Stroke& stroke)
-{
-    sketch::PoseAction a;
-    a.kind = sketch::PoseActionKind::Stroke;
-    a.stroke = stroke;
-    return a;
-}
-
-sketch::PoseAction keyframe(double time)
-{
-    sketch::PoseAction a;
-    a.kind = sketch::PoseActionKind::Keyframe;
-    a.time = time;
-    return a;
-}
-
-sketch::PoseAction moveKeyframe(double time, double to)
-{
-    sketch::PoseAction a;
-    a.kind = sketch::PoseActionKind::MoveKeyframe;
-    a.time = time;
-    a.to = to;
-    return a;
-}
-
-sketch::PoseAction deleteKeyframe(double time)
-{
-    sketch::PoseAction a;
-    a.kind = sketch::PoseActionKind::DeleteKeyframe;
-    a.time = time;
-    return a;
-}
-
-sketch::PoseAction clear()
-{
-    sketch::PoseAction a;
-    a.kind = sketch::PoseActionKind::Clear;
-    return a;
-}
-
 std::vector<sketch::Stroke> lipStrokes(const test::PoseWorld& w, const std::string& pose)
 {
     const auto& contours = w.topology.labels.contours;
@@ -68,7 +28,7 @@ TEST_CASE("pose session: strokes along the open smile's lips find the lip FPs an
     PoseEditor editor(w.model, w.neutral);
     REQUIRE(editor.face().V == w.neutral.V);
     for (const sketch::Stroke& s : lipStrokes(w, "smile_open"))
-        editor.apply(strokeAction(s));
+        editor.apply(test::strokeAction(s));
     REQUIRE(editor.reading().strokeGroup == std::vector<std::string> { "upper_lip", "lower_lip" });
     std::set<std::string> found;
     for (const auto& fp : editor.reading().fps)
@@ -114,13 +74,13 @@ TEST_CASE("pose session: undo and redo restore bit-identical states, and a bad a
     const auto smile = lipStrokes(w, "smile_open");
     const auto pucker = lipStrokes(w, "pucker");
     PoseEditor a(w.model, w.neutral);
-    a.apply(strokeAction(smile[0]));
-    a.apply(keyframe(0.0));
+    a.apply(test::strokeAction(smile[0]));
+    a.apply(test::keyframeAction(0.0));
     const Vertices afterKey = a.face().V;
-    a.apply(clear());
+    a.apply(test::clearAction());
     REQUIRE(a.face().V == w.neutral.V);
-    a.apply(strokeAction(pucker[0]));
-    a.apply(keyframe(1.0));
+    a.apply(test::strokeAction(pucker[0]));
+    a.apply(test::keyframeAction(1.0));
     REQUIRE(a.keyframes().size() == 2);
     REQUIRE(a.undo());
     REQUIRE(a.undo());
@@ -131,7 +91,8 @@ TEST_CASE("pose session: undo and redo restore bit-identical states, and a bad a
     REQUIRE(a.redo());
     const Vertices puckered = a.face().V;
     PoseEditor b(w.model, w.neutral);
-    for (const auto& action : { strokeAction(smile[0]), keyframe(0.0), clear(), strokeAction(pucker[0]) })
+    for (const auto& action :
+        { test::strokeAction(smile[0]), test::keyframeAction(0.0), test::clearAction(), test::strokeAction(pucker[0]) })
         b.apply(action);
     REQUIRE(b.face().V == puckered);
     REQUIRE(b.pose() == a.pose());
@@ -140,11 +101,11 @@ TEST_CASE("pose session: undo and redo restore bit-identical states, and a bad a
     sketch::Stroke off = smile[0];
     for (auto& p : off.points)
         p.y = 5;
-    REQUIRE_THROWS_WITH(b.apply(strokeAction(off)), Catch::StartsWith("pose stroke 1 hits no feature point cluster"));
+    REQUIRE_THROWS_WITH(b.apply(test::strokeAction(off)), Catch::StartsWith("pose stroke 1 hits no feature point cluster"));
     REQUIRE(b.face().V == puckered);
     REQUIRE_FALSE(b.redo());
-    REQUIRE_THROWS_WITH(b.apply(keyframe(0.0)), Catch::Contains("keyframe at 0 s already"));
-    REQUIRE_THROWS_WITH(b.apply(keyframe(-1.0)), Catch::Contains("keyframe: time -1"));
+    REQUIRE_THROWS_WITH(b.apply(test::keyframeAction(0.0)), Catch::Contains("keyframe at 0 s already"));
+    REQUIRE_THROWS_WITH(b.apply(test::keyframeAction(-1.0)), Catch::Contains("keyframe: time -1"));
     REQUIRE(b.keyframes().size() == 1);
     REQUIRE_THROWS_WITH(b.timeline(), Catch::Contains("1 keyframe(s)"));
 }
@@ -154,13 +115,13 @@ TEST_CASE("pose session: keyframes move and are deleted with their poses, undoab
     const test::PoseWorld& w = test::poseWorld();
     const auto smile = lipStrokes(w, "smile_open");
     PoseEditor e(w.model, w.neutral);
-    e.apply(keyframe(0.0)); // the neutral pose
-    e.apply(strokeAction(smile[0]));
-    e.apply(keyframe(1.0)); // the smile
+    e.apply(test::keyframeAction(0.0)); // the neutral pose
+    e.apply(test::strokeAction(smile[0]));
+    e.apply(test::keyframeAction(1.0)); // the smile
     const Eigen::VectorXd smilePose = e.pose();
     REQUIRE(smilePose.norm() > 0);
     const Vertices face = e.face().V;
-    e.apply(moveKeyframe(1.0, 2.5));
+    e.apply(test::moveKeyframeAction(1.0, 2.5));
     REQUIRE(e.keyframes().size() == 2);
     REQUIRE(e.face().V == face); // editing the timeline does not pose the face
     const Timeline moved = e.timeline();
@@ -168,12 +129,13 @@ TEST_CASE("pose session: keyframes move and are deleted with their poses, undoab
     REQUIRE(moved.sample(2.5) == smilePose);
     REQUIRE(moved.sample(0.0).norm() == 0);
     // Bad edits: refused, nothing changed.
-    REQUIRE_THROWS_WITH(e.apply(moveKeyframe(1.0, 3.0)), Catch::StartsWith("keyframe move: there is no keyframe at 1 s"));
-    REQUIRE_THROWS_WITH(e.apply(moveKeyframe(2.5, 0.0)), Catch::StartsWith("keyframe move: there is a keyframe at 0 s already"));
-    REQUIRE_THROWS_WITH(e.apply(moveKeyframe(2.5, -1.0)), Catch::StartsWith("keyframe move: time -1"));
-    REQUIRE_THROWS_WITH(e.apply(deleteKeyframe(7.0)), Catch::StartsWith("keyframe delete: there is no keyframe at 7 s"));
+    REQUIRE_THROWS_WITH(e.apply(test::moveKeyframeAction(1.0, 3.0)), Catch::StartsWith("keyframe move: there is no keyframe at 1 s"));
+    REQUIRE_THROWS_WITH(
+        e.apply(test::moveKeyframeAction(2.5, 0.0)), Catch::StartsWith("keyframe move: there is a keyframe at 0 s already"));
+    REQUIRE_THROWS_WITH(e.apply(test::moveKeyframeAction(2.5, -1.0)), Catch::StartsWith("keyframe move: time -1"));
+    REQUIRE_THROWS_WITH(e.apply(test::deleteKeyframeAction(7.0)), Catch::StartsWith("keyframe delete: there is no keyframe at 7 s"));
     REQUIRE(e.timeline().end() == 2.5);
-    e.apply(deleteKeyframe(0.0));
+    e.apply(test::deleteKeyframeAction(0.0));
     REQUIRE(e.keyframes().size() == 1);
     REQUIRE(e.keyframes()[0].time == 2.5);
     REQUIRE(e.keyframes()[0].fp == smilePose);
@@ -192,7 +154,7 @@ TEST_CASE("pose session: replay names a bad action as the file does, and the tim
     sketch::Session session;
     session.actions.resize(1); // one shape strokes before the posing
     const auto smile = lipStrokes(w, "smile_open");
-    for (auto a : { strokeAction(smile[0]), keyframe(0.5), clear(), keyframe(2.0) }) {
+    for (auto a : { test::strokeAction(smile[0]), test::keyframeAction(0.5), test::clearAction(), test::keyframeAction(2.0) }) {
         a.afterStrokes = 1;
         session.poseActions.push_back(a);
     }
@@ -210,7 +172,7 @@ TEST_CASE("pose session: replay names a bad action as the file does, and the tim
     sketch::Stroke off = smile[0];
     for (auto& p : off.points)
         p.y = 5;
-    session.poseActions.insert(session.poseActions.begin() + 2, strokeAction(off));
+    session.poseActions.insert(session.poseActions.begin() + 2, test::strokeAction(off));
     session.poseActions[2].afterStrokes = 1;
     PoseEditor again(w.model, w.neutral);
     REQUIRE_THROWS_WITH(
