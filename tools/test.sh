@@ -19,8 +19,12 @@ lines=-g1
 
 if [ "$mode" = sanitize ]; then
   dir=build-asan
+  # A unity build (CMake joins the sources of each target in batches of 8): the sanitizer build
+  # is CI's longest step, and most of a test file's compile time is the Catch2 and Eigen headers
+  # it shares with its neighbours (BENCHMARKS.md, "CI time"). The release build stays one file
+  # per compile, as developers build, so a file missing an include of its own still fails there.
   cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="$lines -O1" \
-        -DFACESKETCH_SANITIZE=ON -DFACESKETCH_WERROR=ON
+        -DFACESKETCH_SANITIZE=ON -DFACESKETCH_WERROR=ON -DCMAKE_UNITY_BUILD=ON
   # Mesa's drivers and the validation layer keep process-lifetime allocations that LeakSanitizer
   # would report; everything else (ours) must be leak-free.
   export LSAN_OPTIONS="suppressions=$PWD/tools/lsan.supp:print_suppressions=0"

@@ -18,7 +18,10 @@
 
 namespace facesketch {
 
-namespace {
+// A named namespace, not an anonymous one: SceneRenderer::Impl holds these types, and gcc's
+// -Wsubobject-linkage rejects a class with anonymous-namespace members once the file is compiled
+// inside a unity source (CMAKE_UNITY_BUILD, which CI uses).
+namespace scene_detail {
 
 struct DrawVertex {
     float position[3];
@@ -103,7 +106,8 @@ std::vector<DrawVertex> polylineVertices(const std::vector<glm::vec2>& pixels, c
     return vertices;
 }
 
-} // namespace
+} // namespace scene_detail
+using namespace scene_detail;
 
 struct SceneRenderer::Impl {
     gpu::Device& device;
