@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "io/mesh_io.h"
 
+#include <algorithm>
 #include <cstdlib>
 
 namespace facesketch::gui {
@@ -44,55 +45,103 @@ Document::Document(sketch::SessionReplayer& replayer, const std::filesystem::pat
 
 sketch::ReplayOutcome Document::addStroke(const sketch::StrokeAction& action)
 {
-    if (poseApplied_ > 0)
-        fail("the face is posed (", poseApplied_, " pose actions in effect): undo them to sketch its shape");
     sketch::ReplayOutcome out = replayer_.apply(action);
     if (out.kind != sketch::ReplayOutcome::Kind::Applied)
         return out;
-    strokes_.resize(applied_);
-    poseActions_.clear(); // undone pose actions posed another neutral
-    revisions_.resize(applied_ + 1);
+    // The replayer forgot its undone strokes when it applied this one, so the document does too.
+    dropRedo();
     strokes_.push_back({ action, out.reading });
+    history_.push_back(Step::Shape);
     ++applied_;
+    const std::uint64_t previousRevision = revision_;
     revision_ = nextRevision_++;
     revisions_.push_back(revision_);
+    shapeRevisions_.push_back(revision_);
+    if (poseApplied_ > 0) {
+        // The pose actions in effect pose the new neutral. If one cannot (a pose stroke that no
+        // longer hits a feature point), the stroke is taken back and the editor kept.
+        std::unique_ptr<pose::PoseEditor> before = std::move(editor_);
+        const std::uint64_t beforeRevision = editorRevision_;
+        try {
+            reposeNeutral();
+        } catch (...) {
+            strokes_.pop_back();
+            history_.pop_back();
+            revisions_.pop_back();
+            shapeRevisions_.pop_back();
+            --applied_;
+            revision_ = previousRevision;
+            replayer_.undo();
+            editor_ = std::move(before);
+            editorRevision_ = beforeRevision;
+            throw;
+        }
+    }
     return out;
+}
+
+void Document::dropRedo()
+{
+    strokes_.resize(applied_);
+    poseActions_.resize(poseApplied_);
+    history_.resize(done());
+    revisions_.resize(done() + 1);
+    shapeRevisions_.resize(applied_ + 1);
+}
+
+void Document::reposeNeutral()
+{
+    buildEditor();
+    for (size_t i = 0; i < poseApplied_; ++i) {
+        try {
+            editor_->apply(poseActions_[i]);
+        } catch (const Error& e) {
+            fail("the new face cannot be posed as before: pose action ", i, ": ", e.what());
+        }
+    }
 }
 
 bool Document::undo()
 {
-    if (poseApplied_ > 0) {
+    if (done() == 0)
+        return false;
+    if (history_[done() - 1] == Step::Pose) {
         if (!editor_ || !editor_->undo())
             return false;
         --poseApplied_;
     } else {
-        if (applied_ == 0 || !replayer_.undo())
+        if (!replayer_.undo())
             return false;
         --applied_;
+        // The previous neutral was posed by the same actions, so this cannot fail.
+        if (poseApplied_ > 0)
+            reposeNeutral();
     }
-    revision_ = revisions_[applied_ + poseApplied_];
+    revision_ = revisions_[done()];
     return true;
 }
 
 bool Document::redo()
 {
-    if (applied_ < strokes_.size()) {
+    if (done() == history_.size())
+        return false;
+    if (history_[done()] == Step::Shape) {
         if (!replayer_.redo())
             return false;
         ++applied_;
-    } else if (poseApplied_ < poseActions_.size()) {
+        if (poseApplied_ > 0)
+            reposeNeutral();
+    } else {
         // The editor may have been rebuilt for this neutral since the action was undone (its
         // redo history is gone then); applying the action again gives the same state, since
         // reading and completion are deterministic.
-        if (!editor_ || editorRevision_ != revisions_[applied_])
+        if (!editor_ || editorRevision_ != shapeRevisions_[applied_])
             buildEditor();
         if (!editor_->redo())
             editor_->apply(poseActions_[poseApplied_]);
         ++poseApplied_;
-    } else {
-        return false;
     }
-    revision_ = revisions_[applied_ + poseApplied_];
+    revision_ = revisions_[done()];
     return true;
 }
 
@@ -114,13 +163,13 @@ void Document::buildEditor()
     neutral.V = neutral.V.cast<float>().cast<double>();
     pose::checkFace(*poseModel_, neutral, "the face to pose");
     editor_ = std::make_unique<pose::PoseEditor>(*poseModel_, neutral);
-    editorRevision_ = revisions_[applied_];
+    editorRevision_ = shapeRevisions_[applied_];
 }
 
 void Document::preparePosing()
 {
-    if (!editor_ || (poseApplied_ == 0 && editorRevision_ != revisions_[applied_]))
-        buildEditor();
+    if (!editor_ || editorRevision_ != shapeRevisions_[applied_])
+        reposeNeutral();
 }
 
 void Document::addPoseAction(const sketch::PoseAction& action)
@@ -129,10 +178,9 @@ void Document::addPoseAction(const sketch::PoseAction& action)
     sketch::PoseAction a = action;
     a.afterStrokes = static_cast<int>(applied_);
     editor_->apply(a);
-    strokes_.resize(applied_);
-    poseActions_.resize(poseApplied_);
-    revisions_.resize(applied_ + poseApplied_ + 1);
+    dropRedo();
     poseActions_.push_back(a);
+    history_.push_back(Step::Pose);
     ++poseApplied_;
     revision_ = nextRevision_++;
     revisions_.push_back(revision_);
@@ -193,7 +241,12 @@ int Document::load(const sketch::Session& session, const std::filesystem::path& 
     const std::uint64_t editorRevisionBefore = editorRevision_;
     const std::vector<std::uint64_t> revisionsBefore = revisions_;
     while (replayer_.undo()) { }
+    const std::vector<std::uint64_t> shapeRevisionsBefore = shapeRevisions_;
     std::vector<DocumentStroke> loaded;
+    // keptBefore[k]: how many of the first k strokes of the file were applied (the rest were
+    // dropped), so each pose action keeps its place among the strokes that remain.
+    std::vector<int> keptBefore { 0 };
+    std::vector<sketch::PoseAction> poses = session.poseActions;
     int dropped = 0;
     try {
         for (const sketch::StrokeAction& a : session.actions) {
@@ -202,15 +255,20 @@ int Document::load(const sketch::Session& session, const std::filesystem::path& 
                 loaded.push_back({ a, std::move(out.reading) });
             else
                 ++dropped;
+            keptBefore.push_back(static_cast<int>(loaded.size()));
         }
-        if (!session.poseActions.empty()) {
-            // A fresh revision for the new neutral, so that the editor is built for it.
-            revisions_.assign(loaded.size() + 1, nextRevision_++);
+        // Fresh revisions for the new neutrals, so that the editor is built for the last one.
+        shapeRevisions_.clear();
+        for (size_t i = 0; i <= loaded.size(); ++i)
+            shapeRevisions_.push_back(nextRevision_++);
+        if (!poses.empty()) {
             applied_ = loaded.size();
             buildEditor();
-            for (size_t i = 0; i < session.poseActions.size(); ++i) {
+            for (size_t i = 0; i < poses.size(); ++i) {
+                const size_t after = std::min(static_cast<size_t>(std::max(poses[i].afterStrokes, 0)), session.actions.size());
+                poses[i].afterStrokes = keptBefore[after];
                 try {
-                    editor_->apply(session.poseActions[i]);
+                    editor_->apply(poses[i]);
                 } catch (const Error& e) {
                     fail(where, ": pose action ", i, ": ", e.what());
                 }
@@ -225,26 +283,27 @@ int Document::load(const sketch::Session& session, const std::filesystem::path& 
         editor_ = std::move(editorBefore);
         editorRevision_ = editorRevisionBefore;
         revisions_ = revisionsBefore;
+        shapeRevisions_ = shapeRevisionsBefore;
+        dropRedo(); // the replayer's undone strokes are gone
         throw;
     }
-    // Opening is one action: undo returns to the state before it is not offered (the tracking
-    // history restarts), so the strokes are simply replaced.
+    // Opening replaces the document: the loaded strokes and pose actions become its history,
+    // in the file's order, and undo goes back through them (not to the state before opening).
     strokes_ = std::move(loaded);
     applied_ = strokes_.size();
-    poseActions_ = session.poseActions;
+    poseActions_ = std::move(poses);
     poseApplied_ = poseActions_.size();
     tension_ = session.tension;
-    if (poseActions_.empty()) {
-        revisions_.assign(1, nextRevision_++);
-        for (size_t i = 0; i < applied_; ++i)
-            revisions_.push_back(nextRevision_++);
-    } else {
-        // revisions_[applied_] is the editor's neutral, set above.
-        for (size_t i = 0; i < applied_; ++i)
-            revisions_[i] = nextRevision_++;
-        for (size_t i = 0; i < poseApplied_; ++i)
-            revisions_.push_back(nextRevision_++);
+    history_.clear();
+    for (size_t i = 0, next = 0; i <= applied_; ++i) {
+        for (; next < poseApplied_ && static_cast<size_t>(poseActions_[next].afterStrokes) == i; ++next)
+            history_.push_back(Step::Pose);
+        if (i < applied_)
+            history_.push_back(Step::Shape);
     }
+    revisions_.assign(1, nextRevision_++);
+    for (size_t i = 0; i < history_.size(); ++i)
+        revisions_.push_back(nextRevision_++);
     revision_ = revisions_.back();
     return dropped;
 }

@@ -4,17 +4,20 @@
 // CLI replays sessions with, so a saved session replays to the identical face. Only strokes
 // that pin something enter the session (the CLI skips the others, so the faces agree).
 //
-// Every action (a stroke, opening a session) can be undone and redone; undo and redo restore
-// the tracking model's stored state, so the face after undo is bit-identical to the face before
-// the undone action.
+// Every stroke and pose action can be undone and redone; undo and redo restore the tracking
+// model's stored state, so the face after undo is bit-identical to the face before the undone
+// action. Opening a session replaces the document (its strokes then undo one by one); the state
+// before the open is not offered by undo.
 //
 // Posing (issue 13, thesis 5.3-5.5). With a pose model (enablePosing), pose actions (pose strokes,
 // keyframes, clears) go through pose::PoseEditor, the code path of `facesketch pose` and
-// `animate`. They pose the head the shape strokes built (the neutral), so the history is the
-// shape strokes first, then the pose actions: a shape stroke is refused while a pose action is
-// in effect (undo them first), and a pose action forgets undone shape strokes. The neutral is
-// rounded to float32, as the face file a saved session names holds it (io/mesh_io.h PLY), so
-// `facesketch pose --session` replays the saved session to the app's posed face bit for bit.
+// `animate`. They pose the head that all the shape strokes in effect build (the neutral), as
+// `facesketch pose --session` replays a session. Shape strokes and pose actions interleave in one
+// history: a shape stroke drawn while the face is posed reshapes the neutral, and the pose
+// actions in effect are replayed on the new neutral (reading and completion are deterministic);
+// undoing it does the same for the old neutral. The neutral is rounded to float32, as the face
+// file a saved session names holds it (io/mesh_io.h PLY), so `facesketch pose --session` replays
+// the saved session to the app's posed face bit for bit.
 
 #include "pose/pose_session.h"
 #include "sketch/replay.h"
@@ -43,21 +46,25 @@ public:
     /// outlive the document.
     Document(sketch::SessionReplayer& replayer, const std::filesystem::path& model, const std::filesystem::path& dataset);
 
-    /// Reads and applies one stroke. Applied: it becomes the last stroke of the session and any
-    /// undone strokes are forgotten. PinsNothing or Refused: nothing changes (the outcome says
-    /// why). Throws Error as SessionReplayer::apply does (nothing changed).
+    /// Reads and applies one stroke. Applied: it becomes the last action of the session, any
+    /// undone actions are forgotten, and the pose actions in effect pose the new neutral.
+    /// PinsNothing or Refused: nothing changes (the outcome says why). Throws Error as
+    /// SessionReplayer::apply does (nothing changed), or naming the pose action the new neutral
+    /// cannot replay (the stroke is taken back; undone actions are forgotten, as the replayer
+    /// forgot them).
     sketch::ReplayOutcome addStroke(const sketch::StrokeAction& action);
 
-    /// Undoes the last action (pose action, else stroke); false (nothing changed) if there is none.
+    /// Undoes the last action in effect; false (nothing changed) if there is none.
     bool undo();
-    /// Redoes the last undone action (strokes before pose actions); false if there is none.
+    /// Redoes the first undone action; false if there is none.
     bool redo();
-    bool canUndo() const { return applied_ + poseApplied_ > 0; }
-    bool canRedo() const { return applied_ + poseApplied_ < strokes_.size() + poseActions_.size(); }
+    bool canUndo() const { return done() > 0; }
+    bool canRedo() const { return done() < history_.size(); }
 
     /// Allows pose actions: `model` (kept by reference, keep it alive; `path` is written into
     /// saved sessions as `poses`) poses the mesh `neutral()` returns for the current shape face
-    /// (the whole head, #V by 3 mm, the pose model's topology).
+    /// (the whole head, #V by 3 mm, the pose model's topology). `neutral` is called with the
+    /// document already in the new shape state (face(), appliedCount()).
     void enablePosing(const pose::PoseModel& model, const std::filesystem::path& path, std::function<Mesh()> neutral);
     bool posingEnabled() const { return poseModel_ != nullptr; }
     /// Builds the pose editor for the current neutral if it has none yet. Throws Error if posing
@@ -121,8 +128,14 @@ public:
     const std::filesystem::path& datasetPath() const { return dataset_; }
 
 private:
+    enum class Step { Shape, Pose };
+    size_t done() const { return applied_ + poseApplied_; }
     void buildEditor();
-    void replayPose(const std::vector<sketch::PoseAction>& actions);
+    // After the neutral changed (a shape stroke applied or undone while posed): a new editor for
+    // it with the pose actions in effect applied again.
+    void reposeNeutral();
+    // Forgets the undone actions (a new action was taken).
+    void dropRedo();
 
     sketch::SessionReplayer& replayer_;
     std::filesystem::path model_, dataset_;
@@ -136,12 +149,17 @@ private:
     std::uint64_t editorRevision_ = 0;
     std::vector<sketch::PoseAction> poseActions_;
     size_t poseApplied_ = 0;
+    // The order of strokes_ and poseActions_ in the one history; the first done() are in
+    // effect (undone actions are always its tail, so each list's undone part is its own tail).
+    std::vector<Step> history_;
     double tension_ = 0;
     std::uint64_t revision_ = 0;
     std::uint64_t savedRevision_ = 0;
-    // Revisions of the states after 0..strokes_.size() strokes and then 1..poseActions_.size()
-    // pose actions (index applied_ + poseApplied_), so undoing back to a saved state is clean.
+    // Revisions of the states after 0..history_.size() actions (index done()), so undoing back
+    // to a saved state is clean; and of the neutrals after 0..strokes_.size() shape strokes (the
+    // editor is rebuilt when its neutral's revision is not the current one).
     std::vector<std::uint64_t> revisions_ { 0 };
+    std::vector<std::uint64_t> shapeRevisions_ { 0 };
     std::uint64_t nextRevision_ = 1;
 };
 

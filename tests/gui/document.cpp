@@ -130,56 +130,71 @@ namespace {
 sketch::PoseAction poseStroke(const std::string& pose, const std::string& contour)
 {
     const auto& pw = test::poseWorld();
-    sketch::PoseAction a;
-    a.kind = sketch::PoseActionKind::Stroke;
-    a.stroke = test::traceStroke(pw.pose(pose), pw.topology.labels.contours.at(contour), pw.front);
-    return a;
-}
-
-sketch::PoseAction keyframe(double time)
-{
-    sketch::PoseAction a;
-    a.kind = sketch::PoseActionKind::Keyframe;
-    a.time = time;
-    return a;
+    return test::strokeAction(test::traceStroke(pw.pose(pose), pw.topology.labels.contours.at(contour), pw.front));
 }
 
 } // namespace
 
-TEST_CASE("document: pose actions come after the strokes, undo and redo exactly, and a saved session replays in facesketch pose's editor")
+TEST_CASE(
+    "document: pose actions and shape strokes interleave, undo and redo exactly, and a saved session replays in facesketch pose's editor")
 {
     const auto& w = test::sketchWorld();
     const auto& pw = test::poseWorld();
     Inputs in;
     sketch::SessionReplayer replayer(test::device(), w.model, w.candidateFaces, w.flags, {}, "model");
     Document doc(replayer, in.model, in.dataset);
-    REQUIRE_THROWS_AS(doc.addPoseAction(keyframe(0)), Error); // no pose model yet
+    REQUIRE_THROWS_AS(doc.addPoseAction(test::keyframeAction(0)), Error); // no pose model yet
     REQUIRE_FALSE(doc.canUndo());
     const std::filesystem::path poses = in.dir / "p.poses";
     std::ofstream(poses) << "x";
-    doc.enablePosing(pw.model, poses, [&] { return pw.neutral; });
+    // The head to pose follows the shape strokes, as the app's does (here: 0.2 % wider per stroke).
+    auto headOf = [&](const Document& d) {
+        Mesh head = pw.neutral;
+        head.V.col(0) *= 1.0 + 0.002 * static_cast<double>(d.appliedCount());
+        return head;
+    };
+    doc.enablePosing(pw.model, poses, [&] { return headOf(doc); });
     addApplied(doc, 2);
     doc.undo(); // an undone stroke, forgotten by the first pose action
 
-    doc.addPoseAction(keyframe(0));
+    doc.addPoseAction(test::keyframeAction(0));
     REQUIRE(doc.appliedCount() == 1);
     REQUIRE(doc.strokes().size() == 1);
     const std::uint64_t r1 = doc.revision();
     // The neutral as a face file holds it (float32).
-    REQUIRE(doc.poseEditor()->neutral().V == pw.neutral.V.cast<float>().cast<double>());
+    REQUIRE(doc.poseEditor()->neutral().V == headOf(doc).V.cast<float>().cast<double>());
     doc.addPoseAction(poseStroke("smile_open", "lip_upper_outer"));
     const Vertices smiled = doc.poseEditor()->face().V;
     REQUIRE((smiled - doc.poseEditor()->neutral().V).rowwise().norm().maxCoeff() > 1.0);
-    doc.addPoseAction(keyframe(1));
+    doc.addPoseAction(test::keyframeAction(1));
     REQUIRE(doc.poseEditor()->keyframes().size() == 2);
 
-    // A shape stroke is refused while the face is posed, nothing changed.
+    // A shape stroke while the face is posed reshapes the head, and the same pose actions pose the
+    // new head (as a fresh editor replaying them does); undo gives back the old posed face exactly.
     const std::uint64_t r3 = doc.revision();
-    REQUIRE_THROWS_AS(doc.addStroke(actions().front()), Error);
-    REQUIRE(doc.revision() == r3);
+    const Vertices head1 = doc.poseEditor()->neutral().V;
+    const std::vector<sketch::StrokeAction> more = actions();
+    for (size_t k = 1; doc.appliedCount() == 1; ++k)
+        doc.addStroke(more.at(k));
     REQUIRE(doc.poseAppliedCount() == 3);
+    REQUIRE(doc.poseEditor()->keyframes().size() == 2);
+    REQUIRE(doc.poseEditor()->neutral().V == headOf(doc).V.cast<float>().cast<double>());
+    REQUIRE(doc.poseEditor()->neutral().V != head1);
+    const Vertices smiledWider = doc.poseEditor()->face().V;
+    {
+        pose::PoseEditor fresh(pw.model, doc.poseEditor()->neutral());
+        for (const sketch::PoseAction& a : doc.poseActions())
+            fresh.apply(a);
+        REQUIRE(fresh.face().V == smiledWider);
+    }
+    const std::uint64_t r4 = doc.revision();
+    REQUIRE(doc.undo());
+    REQUIRE(doc.appliedCount() == 1);
+    REQUIRE(doc.revision() == r3);
+    REQUIRE(doc.poseEditor()->face().V == smiled);
+    REQUIRE(doc.poseEditor()->keyframes().size() == 2);
 
-    // Undo pops the pose actions first, then the strokes; redo the other way round.
+    // Undo goes back through the history in order, redo forward again.
     REQUIRE(doc.undo());
     REQUIRE(doc.undo());
     REQUIRE(doc.poseEditor()->face().V == doc.poseEditor()->neutral().V);
@@ -190,9 +205,12 @@ TEST_CASE("document: pose actions come after the strokes, undo and redo exactly,
     REQUIRE_FALSE(doc.undo());
     for (int i = 0; i < 4; ++i)
         REQUIRE(doc.redo());
-    REQUIRE_FALSE(doc.redo());
     REQUIRE(doc.poseEditor()->face().V == smiled);
     REQUIRE(doc.revision() == r3);
+    REQUIRE(doc.redo()); // the shape stroke drawn after the pose actions
+    REQUIRE_FALSE(doc.redo());
+    REQUIRE(doc.poseEditor()->face().V == smiledWider);
+    REQUIRE(doc.revision() == r4);
 
     // Saved: the session names the pose model and a face file; `facesketch pose` poses that file
     // with the session's actions to the identical face, and the document opens it again.
@@ -201,28 +219,32 @@ TEST_CASE("document: pose actions come after the strokes, undo and redo exactly,
     const sketch::Session onDisk = sketch::loadSession(file);
     REQUIRE(onDisk.poses == "p.poses");
     REQUIRE(onDisk.face == "posed.face.ply");
-    REQUIRE(onDisk.actions.size() == 1);
+    REQUIRE(onDisk.actions.size() == 2);
     REQUIRE(onDisk.poseActions.size() == 3);
-    REQUIRE(onDisk.poseActions[1].afterStrokes == 1);
+    REQUIRE(onDisk.poseActions[2].afterStrokes == 1); // before the second stroke, in the file's order
     pose::PoseEditor cli(pw.model, readMesh(in.dir / "posed.face.ply"));
     pose::replayPoseActions(cli, onDisk);
-    REQUIRE(cli.face().V == smiled);
+    REQUIRE(cli.face().V == smiledWider);
 
     sketch::SessionReplayer b(test::device(), w.model, w.candidateFaces, w.flags, {}, "model");
     Document other(b, in.model, in.dataset);
     REQUIRE_THROWS_AS(other.open(file), Error); // pose actions, but no pose model
     REQUIRE(other.appliedCount() == 0);
-    other.enablePosing(pw.model, poses, [&] { return pw.neutral; });
+    other.enablePosing(pw.model, poses, [&] { return headOf(other); });
     REQUIRE(other.open(file) == 0);
     REQUIRE(other.poseAppliedCount() == 3);
-    REQUIRE(other.poseEditor()->face().V == smiled);
+    REQUIRE(other.poseEditor()->face().V == smiledWider);
     REQUIRE(sketch::operator==(other.session(), doc.session()));
+    // The opened history is the file's order: the shape stroke is undone first.
+    REQUIRE(other.undo());
+    REQUIRE(other.appliedCount() == 1);
+    REQUIRE(other.poseEditor()->face().V == smiled);
     REQUIRE(other.undo());
     REQUIRE(other.poseEditor()->keyframes().size() == 1);
 
     // Export writes the posed face.
     doc.exportMesh(in.dir / "posed.ply");
-    REQUIRE((readMesh(in.dir / "posed.ply").V - smiled).cwiseAbs().maxCoeff() < 1e-4);
+    REQUIRE((readMesh(in.dir / "posed.ply").V - smiledWider).cwiseAbs().maxCoeff() < 1e-4);
 }
 
 TEST_CASE("document: a session of another model or a broken file is refused and changes nothing")
