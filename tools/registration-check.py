@@ -12,9 +12,9 @@ is run on the result and on the direct ICT import at about 6,000 vertices, for t
 "within 1.5x of the direct import" comparison.
 
 --args passes options to `register` (per scan) or `import scans` (with --train), e.g.
---args="--blend 40 --smooth-displacement 1".
+--args="--blend 40 --smooth-displacement 1". --ears gives the ear points too (the scans have ears).
 
-usage: tools/registration-check.py FACESKETCH ICT_DIR WORK [--faces N] [--noise MM] [--train] [--args "..."]
+usage: tools/registration-check.py FACESKETCH ICT_DIR WORK [--faces N] [--noise MM] [--train] [--args "..."] [--ears]
 """
 import argparse, json, math, random, re, struct, subprocess, sys
 from pathlib import Path
@@ -54,6 +54,7 @@ def main():
     ap.add_argument("--noise", type=float, default=0.2)
     ap.add_argument("--train", action="store_true")
     ap.add_argument("--args", default="", help="extra options of register / import scans")
+    ap.add_argument("--ears", action="store_true", help="give the scans' ear points (obs_l, obs_r) too: scans with ears, not masks")
     a = ap.parse_args()
     a.work.mkdir(parents=True, exist_ok=True)
     run(a.facesketch, "synth", "-o", a.work / "template", "--identities", 20, "--resolution", "high")
@@ -74,7 +75,7 @@ def main():
         F = [f for f in F if min(math.dist(V[i], centre) for i in f) > 7]
         where = a.work / "scans-in" if a.train else a.work
         write_obj(where / (name + ".obj"), [[x + rng.gauss(0, a.noise) for x in v] for v in V], F)
-        points = {k: list(V[i]) for k, i in manifest["landmarks"].items() if not k.startswith("obs")}
+        points = {k: list(V[i]) for k, i in manifest["landmarks"].items() if a.ears or not k.startswith("obs")}
         (where / (name + ".points.json")).write_text(json.dumps(points))
         if a.train:
             continue
