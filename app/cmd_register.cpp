@@ -101,6 +101,9 @@ void runRegister(const RegisterCommand& c)
     }
     for (const auto& name : r.points.unused)
         std::cout << "  unused (not on the template): " << name << "\n";
+    if (r.refinementPoints > 0)
+        std::cout << "  refined: " << c.options.refinePasses << " passes, " << r.refinementPoints
+                  << " RBF points from the scan vertices (the approximation below is the last pass's)\n";
     std::cout << "  RBF approximation to scan: mean " << beforeSummary.mean << " mm, p95 " << beforeSummary.p95 << " mm, max "
               << beforeSummary.max << " mm (" << beforeSummary.measured << " vertices over the scan)\n";
     std::cout << "  registered to scan: mean " << summary.mean << " mm, p95 " << summary.p95 << " mm, max " << summary.max << " mm ("
@@ -164,6 +167,18 @@ void addRegisterCommand(CLI::App& root)
     cmd->add_option("--max-displacement", c->options.maxDisplacement, "Scan depths farther (mm) from the approximation are ignored")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
+    cmd->add_option(
+           "--smooth-displacement", c->options.smoothingSteps, "Umbrella steps smoothing the displacement from the approximation (0: off)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 100));
+    cmd->add_option("--refine", c->options.refinePasses,
+           "Passes that re-fit the RBF on the previous pass's scan vertices (--refine-spacing apart) and register again (0: one pass, as "
+           "the thesis)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 4));
+    cmd->add_option("--refine-spacing", c->options.refineSpacing, "Spacing (mm, on the template) of the refinement's RBF points")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
     cmd->add_option("--grazing", c->options.grazingCosine,
            "Vertices whose surface meets the axis' ray at a cosine below this are re-placed from their neighbours and snapped (0: off)")
         ->capture_default_str()
@@ -199,6 +214,21 @@ void addImportScansCommand(CLI::App& import)
     sub->add_option("--map-size", o->o.registration.mapWidth, "Depth map width and height in pixels")
         ->capture_default_str()
         ->check(CLI::Range(8, 8192));
+    sub->add_option("--blend", o->o.registration.blendPixels, "Seam blend width beyond the scans' data, pixels")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    sub->add_option("--smooth-displacement", o->o.registration.smoothingSteps,
+           "Umbrella steps smoothing the displacement from the approximation (0: off)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 100));
+    sub->add_option("--refine", o->o.registration.refinePasses,
+           "Passes that re-fit the RBF on the previous pass's scan vertices (--refine-spacing apart) and register again (0: one pass, as "
+           "the thesis)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 4));
+    sub->add_option("--refine-spacing", o->o.registration.refineSpacing, "Spacing (mm, on the template) of the refinement's RBF points")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
     sub->add_option("--grazing", o->o.registration.grazingCosine,
            "Vertices whose surface meets the axis' ray at a cosine below this are re-placed from their neighbours and snapped (0: off)")
         ->capture_default_str()

@@ -11,7 +11,10 @@ imported by `facesketch import scans` onto the template, trained, and `eval obse
 is run on the result and on the direct ICT import at about 6,000 vertices, for the issue's
 "within 1.5x of the direct import" comparison.
 
-usage: tools/registration-check.py FACESKETCH ICT_DIR WORK [--faces N] [--noise MM] [--train]
+--args passes options to `register` (per scan) or `import scans` (with --train), e.g.
+--args="--blend 40 --smooth-displacement 1". --ears gives the ear points too (the scans have ears).
+
+usage: tools/registration-check.py FACESKETCH ICT_DIR WORK [--faces N] [--noise MM] [--train] [--args "..."] [--ears]
 """
 import argparse, json, math, random, re, struct, subprocess, sys
 from pathlib import Path
@@ -50,6 +53,8 @@ def main():
     ap.add_argument("--faces", type=int, default=4)
     ap.add_argument("--noise", type=float, default=0.2)
     ap.add_argument("--train", action="store_true")
+    ap.add_argument("--args", default="", help="extra options of register / import scans")
+    ap.add_argument("--ears", action="store_true", help="give the scans' ear points (obs_l, obs_r) too: scans with ears, not masks")
     a = ap.parse_args()
     a.work.mkdir(parents=True, exist_ok=True)
     run(a.facesketch, "synth", "-o", a.work / "template", "--identities", 20, "--resolution", "high")
@@ -70,7 +75,7 @@ def main():
         F = [f for f in F if min(math.dist(V[i], centre) for i in f) > 7]
         where = a.work / "scans-in" if a.train else a.work
         write_obj(where / (name + ".obj"), [[x + rng.gauss(0, a.noise) for x in v] for v in V], F)
-        points = {k: list(V[i]) for k, i in manifest["landmarks"].items() if not k.startswith("obs")}
+        points = {k: list(V[i]) for k, i in manifest["landmarks"].items() if a.ears or not k.startswith("obs")}
         (where / (name + ".points.json")).write_text(json.dumps(points))
         if a.train:
             continue
@@ -79,13 +84,13 @@ def main():
         for method in ("depth", "projection"):
             out = run(a.facesketch, "register", a.work / "template", a.work / (name + ".obj"), "--points", a.work / (name + ".points.json"),
                       "-o", a.work / ("%s.%s.ply" % (name, method)), "--truth", a.work / (name + ".truth.obj"), "--method", method,
-                      "--error-map", a.work / ("%s.%s.png" % (name, method)))
+                      "--error-map", a.work / ("%s.%s.png" % (name, method)), *a.args.split())
             t = re.search(r"truth.obj: mean ([\d.]+) mm, p95 ([\d.]+) mm, max ([\d.]+) mm \((\d+) vertices", out)
             rbf = re.search(r"RBF approximation to scan: mean ([\d.]+) mm, p95 ([\d.]+)", out)
             secs = re.search(r"in ([\d.]+) s", out)
             rows.append((name, method, rbf.group(1), rbf.group(2), *t.groups(), secs.group(1)))
     if a.train:
-        print(run(a.facesketch, "import", "scans", a.work / "scans-in", "--template", a.work / "template", "-o", a.work / "registered", "-q"))
+        print(run(a.facesketch, "import", "scans", a.work / "scans-in", "--template", a.work / "template", "-o", a.work / "registered", "-q", *a.args.split()))
         run(a.facesketch, "import", "ict-facekit", a.ict, "-o", a.work / "direct", "--identities", a.faces, "--vertices", 6000)
         for name in ("registered", "direct"):
             run(a.facesketch, "train", a.work / name, "-o", a.work / (name + ".model"), "-q")

@@ -301,6 +301,68 @@ void repairGrazing(const SurfaceQuery& surface, const Triangles& F, int first, i
     }
 }
 
+// The refinement's correspondences (register.h, refinePasses): template vertices of [first, end)
+// that the previous pass read from the scan (not grazing), at least `spacing` mm apart on the template and from
+// every point already in the fit, appended to (P, Q) with their registered positions. Taken in
+// vertex order, so the choice is deterministic.
+void addRefinementPoints(const Vertices& templV, int first, int end, double spacing, const Registration& previous,
+    const std::vector<char>& grazing, Vertices& P, Vertices& Q)
+{
+    std::vector<Eigen::Vector3d> chosen;
+    for (Eigen::Index i = 0; i < P.rows(); ++i)
+        chosen.emplace_back(P.row(i).transpose());
+    const Eigen::Index given = P.rows();
+    std::vector<int> added;
+    for (int v = first; v < end; ++v) {
+        // Grazing vertices snapped to the scan are left out: their depth was not read but guessed.
+        if (previous.source[static_cast<std::size_t>(v)] != VertexSource::Scan || grazing[static_cast<std::size_t>(v - first)] != Reliable)
+            continue;
+        const Eigen::Vector3d p = templV.row(v).transpose();
+        if (std::all_of(chosen.begin(), chosen.end(), [&](const Eigen::Vector3d& c) { return (c - p).norm() >= spacing; })) {
+            chosen.push_back(p);
+            added.push_back(v);
+        }
+    }
+    const Vertices oldP = P.topRows(given), oldQ = Q.topRows(given);
+    P.resize(given + static_cast<Eigen::Index>(added.size()), 3);
+    Q.resize(P.rows(), 3);
+    P.topRows(given) = oldP;
+    Q.topRows(given) = oldQ;
+    for (std::size_t k = 0; k < added.size(); ++k) {
+        P.row(given + static_cast<Eigen::Index>(k)) = templV.row(added[k]);
+        Q.row(given + static_cast<Eigen::Index>(k)) = previous.registered.row(added[k]);
+    }
+}
+
+// Smooths the displacement field registered - approximation over the registered range (local
+// triangles F) by `iterations` umbrella steps of weight 1/2. The displacement, not the positions,
+// so that the shape the approximation carries is not shrunk; the scan's noise and its detail
+// finer than the approximation are averaged alike.
+void smoothDisplacement(const Triangles& F, int first, int count, int iterations, Registration& out)
+{
+    std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(count));
+    for (Eigen::Index f = 0; f < F.rows(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            neighbours[static_cast<std::size_t>(F(f, k))].push_back(F(f, (k + 1) % 3));
+            neighbours[static_cast<std::size_t>(F(f, (k + 1) % 3))].push_back(F(f, k));
+        }
+    Vertices displacement = out.registered.middleRows(first, count) - out.approximation.middleRows(first, count);
+    Vertices next = displacement;
+    for (int iteration = 0; iteration < iterations; ++iteration) {
+        for (int v = 0; v < count; ++v) {
+            const auto& around = neighbours[static_cast<std::size_t>(v)];
+            if (around.empty())
+                continue;
+            Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
+            for (const int w : around)
+                sum += displacement.row(w);
+            next.row(v) = 0.5 * displacement.row(v) + 0.5 * sum / static_cast<double>(around.size());
+        }
+        displacement.swap(next);
+    }
+    out.registered.middleRows(first, count) = out.approximation.middleRows(first, count) + displacement;
+}
+
 } // namespace
 
 const char* sourceName(VertexSource source)
@@ -340,6 +402,10 @@ void checkRegistrationOptions(const RegistrationOptions& options, Eigen::Index t
     if (std::isnan(options.grazingCosine) || options.grazingCosine < 0.0 || options.grazingCosine >= 1.0 || std::isnan(options.grazingSnap)
         || options.grazingSnap <= 0.0)
         fail(where, ": grazing cosine ", options.grazingCosine, " outside [0, 1) or snap distance ", options.grazingSnap, " not positive");
+    if (options.smoothingSteps < 0 || options.smoothingSteps > 100)
+        fail(where, ": displacement smoothing steps ", options.smoothingSteps, " outside [0, 100]");
+    if (options.refinePasses < 0 || options.refinePasses > 4 || !(options.refineSpacing > 0.0) || !std::isfinite(options.refineSpacing))
+        fail(where, ": refinement passes ", options.refinePasses, " outside [0, 4] or spacing ", options.refineSpacing, " mm not positive");
     const Eigen::Index end = options.endVertex < 0 ? templateVertices : options.endVertex;
     if (options.firstVertex < 0 || options.firstVertex >= end || end > templateVertices)
         fail(where, ": registered vertices [", options.firstVertex, ", ", end, ") not inside the template's [0, ", templateVertices, ")");
@@ -359,12 +425,7 @@ Registration registerScan(const Mesh& templ, const FeaturePoints& templatePoints
 
     Registration out;
     out.points = completeFeaturePoints(templatePoints, scanPoints, scanName);
-    const RbfWarp rbf(out.points.templatePoints, out.points.scanPoints);
-    out.approximation = rbf.apply(templ.V);
-    out.registered = out.approximation;
-    out.source.assign(static_cast<std::size_t>(templ.V.rows()), VertexSource::Approximation);
     out.frame = frameFromFeaturePoints(out.points.names, out.points.scanPoints);
-    const Vertices unwrapped = out.frame.unwrap(out.approximation.middleRows(first, end - first));
     const Vertices scanUnwrapped = out.frame.unwrap(scan.V);
     std::vector<int> kept;
     for (Eigen::Index f = 0; f < templ.F.rows(); ++f)
@@ -375,13 +436,27 @@ Registration registerScan(const Mesh& templ, const FeaturePoints& templatePoints
     Triangles F(static_cast<Eigen::Index>(kept.size()), 3);
     for (std::size_t i = 0; i < kept.size(); ++i)
         F.row(static_cast<Eigen::Index>(i)) = templ.F.row(kept[i]).array() - first;
-    std::vector<char> grazing(static_cast<std::size_t>(end - first), Reliable);
-    if (options.method == RegistrationMethod::DepthMaps)
-        registerByDepthMaps(scan, scanUnwrapped, F, unwrapped, first, options, out, grazing);
-    else
-        registerByProjection(scanUnwrapped, scan.F, unwrapped, first, options, out, grazing);
-    if (options.grazingCosine > 0.0)
-        repairGrazing(surface, F, first, end - first, options, grazing, out);
+    Vertices rbfTemplate = out.points.templatePoints, rbfScan = out.points.scanPoints;
+    std::vector<char> grazing;
+    for (int pass = 0; pass <= options.refinePasses; ++pass) {
+        if (pass > 0)
+            addRefinementPoints(templ.V, first, end, options.refineSpacing, out, grazing, rbfTemplate, rbfScan);
+        const RbfWarp rbf(rbfTemplate, rbfScan);
+        out.approximation = rbf.apply(templ.V);
+        out.registered = out.approximation;
+        out.source.assign(static_cast<std::size_t>(templ.V.rows()), VertexSource::Approximation);
+        const Vertices unwrapped = out.frame.unwrap(out.approximation.middleRows(first, end - first));
+        grazing.assign(static_cast<std::size_t>(end - first), Reliable);
+        if (options.method == RegistrationMethod::DepthMaps)
+            registerByDepthMaps(scan, scanUnwrapped, F, unwrapped, first, options, out, grazing);
+        else
+            registerByProjection(scanUnwrapped, scan.F, unwrapped, first, options, out, grazing);
+        if (options.grazingCosine > 0.0)
+            repairGrazing(surface, F, first, end - first, options, grazing, out);
+        out.refinementPoints = static_cast<int>(rbfTemplate.rows() - out.points.templatePoints.rows());
+    }
+    if (options.smoothingSteps > 0)
+        smoothDisplacement(F, first, end - first, options.smoothingSteps, out);
     return out;
 }
 

@@ -21,6 +21,15 @@
 //      the unwrapped plane (barycentric, eq. 3.8), the one nearest its own depth where the scan
 //      folds; vertices with no scan triangle under them keep the approximation. No blending.
 //
+// 4. Refinement (options.refinePasses, not in the thesis): the landmarks' RBF is far from the scan
+//    away from the landmarks (3-11 mm, p95, on ICT faces: jaw sides, neck), where step 3 moves
+//    vertices a long way or, beyond maxDisplacement, not at all. After a pass, the template
+//    vertices it read from the scan (label Scan, not grazing), refineSpacing mm apart on the
+//    template, are added to the feature points as correspondences (template position ->
+//    registered position), the RBF is refitted and step 3 is run again from it.
+// 5. Optionally (options.smoothingSteps), the displacement registered - approximation is smoothed
+//    over the mesh: it averages the scan's noise, and the detail the approximation lacks.
+//
 // Grazing vertices (where the thesis' method is weakest). Along a ray from a vertical axis, a
 // surface that faces up or down (under the chin and jaw, the nostrils' sides) is crossed almost
 // tangentially: a tenth of a millimetre along the axis moves the depth the ray meets by
@@ -86,6 +95,17 @@ struct RegistrationOptions {
     /// A grazing vertex is snapped to the scan only if the nearest scan point is within this
     /// (mm) of where its neighbours' displacement puts it; otherwise it keeps that position.
     double grazingSnap = 3.0;
+    /// Refinement passes (see registerScan): after a pass, template vertices that it read from
+    /// the scan, refineSpacing mm apart on the template, join the feature points as extra RBF
+    /// correspondences (template position -> registered position), and the scan is registered
+    /// again from that closer approximation. 0: the thesis' single pass. At most 4.
+    int refinePasses = 1;
+    double refineSpacing = 12.0; ///< mm on the template between refinement points
+    /// Umbrella steps (weight 1/2) smoothing the displacement registered - approximation over
+    /// the registered vertices after the last pass: averages the scan's noise, and with it the
+    /// detail the approximation lacks (on ICT faces 1 step moves the max distance to the true
+    /// surface from about 1.5 to 2.5 mm; docs/registration.md). 0: off.
+    int smoothingSteps = 0;
     FeaturePointLimits limits;
     /// Only vertices [firstVertex, endVertex) are registered (e.g. the template's "skin"
     /// component), and only triangles among them rasterised; every other vertex (eyes, teeth)
@@ -103,12 +123,13 @@ enum class VertexSource : std::uint8_t {
 const char* sourceName(VertexSource source);
 
 struct Registration {
-    Vertices approximation;           ///< #V by 3, the RBF approximation (thesis 3.2.9), mm
+    Vertices approximation;           ///< #V by 3, the RBF approximation (thesis 3.2.9) of the last pass, mm
     Vertices registered;              ///< #V by 3, the registered face, mm
     std::vector<VertexSource> source; ///< #V labels
     CompletedPoints points;           ///< the feature points used, estimated ones included
     CylinderFrame frame;              ///< the unwrapping axis
     DepthGrid grid;                   ///< the depth maps' grid (DepthMaps only)
+    int refinementPoints = 0;         ///< RBF correspondences the last refinement pass added
 };
 
 /// Registers `scan` (any topology, the template's units) into the template's topology.
