@@ -122,32 +122,62 @@ Mapping mapHmm(const MappingProblem& original)
                     nearestPoint[static_cast<std::size_t>(c)] = strokeIndex.nearest(screenOf(problem.cloud[static_cast<std::size_t>(c)]));
     }
 
-    // Transition (4.48-4.53), one layer at a time.
+    // Per layer, what the transitions read of each state, gathered once: its screen position,
+    // depth (pixels), template vertex on screen, nearest stroke point, and its vertex among the
+    // layer's distinct vertices (a point's candidates are a few vertices from many faces, so
+    // the ring map is looked up per pair of distinct vertices, not per pair of states).
+    struct Layer {
+        std::vector<Eigen::Vector2d> screen, templ, strokePoint;
+        std::vector<double> depth;
+        std::vector<int> local;              // index into vertices
+        std::vector<std::uint32_t> vertices; // distinct, in order of first use
+    };
+    auto layerOf = [&](std::size_t point) {
+        Layer L;
+        const std::size_t m = problem.perPoint[point].size();
+        std::map<std::uint32_t, int> seen;
+        for (std::size_t j = 0; j < m; ++j) {
+            const int c = problem.perPoint[point][j];
+            const Candidate& k = problem.cloud[static_cast<std::size_t>(c)];
+            L.screen.push_back(screenOf(k));
+            L.templ.push_back(problem.templateScreen[k.vertex]);
+            L.strokePoint.push_back(problem.screen[static_cast<std::size_t>(nearestPoint[static_cast<std::size_t>(c)])]);
+            L.depth.push_back(axis.dot(Eigen::Vector3d(k.world[0], k.world[1], k.world[2])) * ppmm);
+            const auto [it, inserted] = seen.try_emplace(k.vertex, static_cast<int>(L.vertices.size()));
+            if (inserted)
+                L.vertices.push_back(k.vertex);
+            L.local.push_back(it->second);
+        }
+        return L;
+    };
+    Layer previous = layerOf(points[0]);
+    Eigen::MatrixXd hopCost;
+
+    // Transition (4.48-4.53), one layer at a time (viterbi() asks for layers in order).
     auto transition = [&](std::size_t l, Eigen::MatrixXd& logT) {
-        const std::size_t a = points[l - 1], b = points[l];
-        for (Eigen::Index j = 0; j < logT.rows(); ++j) {
-            const Candidate& cj = candidate(a, j);
-            const Eigen::Vector2d sj = screenOf(cj);
-            const Eigen::Vector3d wj(cj.world[0], cj.world[1], cj.world[2]);
-            const Eigen::Vector2d& tj = problem.templateScreen[cj.vertex];
-            for (Eigen::Index q = 0; q < logT.cols(); ++q) {
-                const Candidate& cq = candidate(b, q);
-                const Eigen::Vector2d sq = screenOf(cq);
-                double logP = 0;
-                if (params.useConnectivity) {
-                    const int hops = problem.rings.hops(cj.vertex, cq.vertex);
+        Layer next = layerOf(points[l]);
+        const Layer& a = previous;
+        if (params.useConnectivity) {
+            hopCost.resize(static_cast<Eigen::Index>(a.vertices.size()), static_cast<Eigen::Index>(next.vertices.size()));
+            for (std::size_t u = 0; u < a.vertices.size(); ++u)
+                for (std::size_t w = 0; w < next.vertices.size(); ++w) {
+                    const int hops = problem.rings.hops(a.vertices[u], next.vertices[w]);
                     const double psiC = hops < 0 ? params.unreachableHops : hops;
-                    logP -= 0.5 * square(psiC / params.sigmaC);
+                    hopCost(static_cast<Eigen::Index>(u), static_cast<Eigen::Index>(w)) = -0.5 * square(psiC / params.sigmaC);
                 }
+        }
+        for (Eigen::Index j = 0; j < logT.rows(); ++j) {
+            const std::size_t sj = static_cast<std::size_t>(j);
+            for (Eigen::Index q = 0; q < logT.cols(); ++q) {
+                const std::size_t sq = static_cast<std::size_t>(q);
+                double logP = 0;
+                if (params.useConnectivity)
+                    logP += hopCost(a.local[sj], next.local[sq]);
                 if (params.useStroke) {
                     // c' = screen xy and the depth along the view axis, both in pixels.
-                    const Eigen::Vector3d wq(cq.world[0], cq.world[1], cq.world[2]);
-                    const double dz = axis.dot(wq - wj) * ppmm;
-                    const double moved = std::sqrt((sq - sj).squaredNorm() + dz * dz);
-                    const int pj = nearestPoint[static_cast<std::size_t>(problem.perPoint[a][static_cast<std::size_t>(j)])];
-                    const int pq = nearestPoint[static_cast<std::size_t>(problem.perPoint[b][static_cast<std::size_t>(q)])];
-                    const double step
-                        = (problem.screen[static_cast<std::size_t>(pq)] - problem.screen[static_cast<std::size_t>(pj)]).norm();
+                    const double dz = next.depth[sq] - a.depth[sj];
+                    const double moved = std::sqrt((next.screen[sq] - a.screen[sj]).squaredNorm() + dz * dz);
+                    const double step = (next.strokePoint[sq] - a.strokePoint[sj]).norm();
                     // The ratio of 4.49, its denominator at least the stroke's sampling step
                     // (finer displacements are not resolved; two candidates sharing their
                     // nearest point would divide by zero).
@@ -155,13 +185,13 @@ Mapping mapHmm(const MappingProblem& original)
                     logP -= 0.5 * square(psiStroke / params.sigmaStroke);
                 }
                 if (params.useSkeleton) {
-                    const Eigen::Vector2d& tq = problem.templateScreen[cq.vertex];
-                    const double psiSkel = ((sq - sj) - (tq - tj)).norm();
+                    const double psiSkel = ((next.screen[sq] - a.screen[sj]) - (next.templ[sq] - a.templ[sj])).norm();
                     logP -= 0.5 * square(psiSkel / sigmaSkel);
                 }
                 logT(j, q) = logP;
             }
         }
+        previous = std::move(next);
     };
     const ViterbiPath path = viterbi(logInitial, logEmission, transition);
 
