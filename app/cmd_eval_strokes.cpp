@@ -30,6 +30,8 @@ struct EvalStrokesCommand {
     bool noCorrelation = false, quiet = false, noProject = false, ownContours = false, thesisObservations = false;
     std::string oracle = "none";
     double supersedeRadius = sketch::TrackingOptions {}.supersedeRadius;
+    double observationNoise = -1;
+    std::vector<std::string> mapperParams;
 };
 
 std::vector<sketch::MapperKind> parseMappers(const std::string& text)
@@ -94,6 +96,10 @@ void runEvalStrokes(const EvalStrokesCommand& c)
         o.params = sketch::MapperParams::thesis();
     o.params.ownContours = c.ownContours;
     o.params.similarFaces = c.similarFaces;
+    if (c.observationNoise >= 0)
+        o.params.observationNoiseMm = c.observationNoise;
+    for (const std::string& assignment : c.mapperParams)
+        sketch::setMapperParam(o.params, assignment);
     o.rereads = c.rereads;
     o.oracle = evaluation::parseStrokeOracle(c.oracle);
     o.keepFaces = c.output.empty() ? 0 : c.renders;
@@ -121,7 +127,8 @@ void runEvalStrokes(const EvalStrokesCommand& c)
             { "image_size", c.size }, { "seed", c.seed }, { "correlation", !c.noCorrelation }, { "supersede_radius_mm", c.supersedeRadius },
             { "project_onto_face_space", !c.noProject }, { "view_plane_only", o.params.viewPlaneOnly }, { "own_contours", c.ownContours },
             { "across_stroke", o.params.acrossStrokeOnly }, { "similar_faces", c.similarFaces }, { "rereads", c.rereads },
-            { "oracle", c.oracle }, { "results", records } };
+            { "observation_noise_mm", o.params.observationNoiseMm }, { "mapper_params", c.mapperParams }, { "oracle", c.oracle },
+            { "results", records } };
         writeFileAtomically(c.json, [&](std::ostream& out) { out << doc.dump(1) << "\n"; });
         std::cout << "wrote " << c.json << "\n";
     }
@@ -174,13 +181,19 @@ void addEvalStrokesCommand(CLI::App& eval)
         ->check(CLI::Range(0.0, 1000.0));
     cmd->add_flag("--no-project", c->noProject, "Tracking: keep the strokes' own positions instead of projecting them onto the face space");
     cmd->add_flag("--thesis-observations", c->thesisObservations,
-        "Observations pin the stroke point in 3D (thesis 4.6.2) instead of the offset across the stroke in its view plane");
+        "The thesis' mapper parameters (MapperParams::thesis()): observations pin the stroke point in 3D (4.6.2) instead of the offset "
+        "across the stroke in its view plane, sigma_d = 2 tau, 48 candidates per point");
     cmd->add_option("--similar-faces", c->similarFaces, "Candidates only of this many training faces nearest the current face (0: all)")
         ->capture_default_str()
         ->check(CLI::Range(0, 100000));
     cmd->add_option("--rereads", c->rereads, "Read each stroke again this many times against the face its reading rebuilt")
         ->capture_default_str()
         ->check(CLI::Range(0, 10));
+    cmd->add_option("--observation-noise", c->observationNoise,
+           "Standard deviation of every observation's error, mm (0 pins the mapped vertices; default: the mapper's)")
+        ->check(CLI::Range(0.0, 100.0));
+    cmd->add_option("--mapper-param", c->mapperParams,
+        "Set one mapper parameter, NAME=VALUE (repeatable; names as in sketch/mapper.h MapperParams, e.g. sigmaDTau=2, vertexStates=1)");
     cmd->add_flag("--own-contours", c->ownContours, "The current face's own contours join the candidate cloud");
     cmd->add_option("--oracle", c->oracle,
            "Diagnosis: give the tracking model the mapped vertices at the true depth (true-depth) or true position (true-position)")

@@ -12,9 +12,65 @@
 
 namespace facesketch::sketch {
 
-Mapping mapHmm(const MappingProblem& problem)
+namespace {
+
+// MapperParams::vertexStates: per point, its candidates grouped by vertex (each vertex stands as
+// its nearest candidate, nearest first), at most maxCandidatesPerPoint of them (the nearest, or
+// with voteEmission the densest), and each one's log kernel density (0 without voteEmission).
+struct VertexStates {
+    std::vector<std::vector<int>> perPoint;
+    std::vector<std::vector<double>> logVote;
+};
+
+VertexStates vertexStates(const MappingProblem& problem, double sigmaVotePx)
 {
-    const MapperParams& params = problem.params;
+    VertexStates out;
+    out.perPoint.resize(problem.screen.size());
+    out.logVote.resize(problem.screen.size());
+    const std::size_t keep = static_cast<std::size_t>(problem.params.maxCandidatesPerPoint);
+    std::map<std::uint32_t, std::size_t> slot;
+    std::vector<std::pair<int, double>> groups; // (representative, density)
+    for (std::size_t i = 0; i < problem.screen.size(); ++i) {
+        slot.clear();
+        groups.clear();
+        for (int c : problem.perPoint[i]) {
+            const Candidate& k = problem.cloud[static_cast<std::size_t>(c)];
+            const double d = (Eigen::Vector2d(k.screen[0], k.screen[1]) - problem.screen[i]).norm() / sigmaVotePx;
+            const auto [it, inserted] = slot.try_emplace(k.vertex, groups.size());
+            if (inserted)
+                groups.push_back({ c, 0.0 });
+            groups[it->second].second += std::exp(-0.5 * d * d);
+        }
+        // The densest first; the order among the kept stays nearest first (the candidates'
+        // order), so ties in Viterbi break as before.
+        std::vector<std::size_t> order(groups.size());
+        for (std::size_t g = 0; g < groups.size(); ++g)
+            order[g] = g;
+        if (order.size() > keep && problem.params.voteEmission) {
+            std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return groups[a].second > groups[b].second; });
+            std::sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(keep));
+        }
+        order.resize(std::min(order.size(), keep));
+        for (std::size_t g : order) {
+            out.perPoint[i].push_back(groups[g].first);
+            // The nearest candidate of a kept vertex contributes at least exp(-r^2/2) with r
+            // the radius in sigma: a density of 0 only underflows far outside the radius.
+            out.logVote[i].push_back(problem.params.voteEmission ? std::log(std::max(groups[g].second, 1e-300)) : 0.0);
+        }
+    }
+    return out;
+}
+
+} // namespace
+
+Mapping mapHmm(const MappingProblem& original)
+{
+    const MapperParams& params = original.params;
+    VertexStates states;
+    if (params.vertexStates)
+        states = vertexStates(original, params.sigmaVoteMm * pixelsPerMm(original.camera, original.world[0]));
+    const MappingProblem problem { original.camera, original.screen, original.world, original.cloud,
+        params.vertexStates ? states.perPoint : original.perPoint, original.templateScreen, original.rings, original.tau, params };
     const std::size_t n = problem.screen.size();
     Mapping out;
     out.chosen.assign(n, -1);
@@ -48,7 +104,8 @@ Mapping mapHmm(const MappingProblem& problem)
         const Eigen::Index m = static_cast<Eigen::Index>(problem.perPoint[i].size());
         logEmission[l].resize(m);
         for (Eigen::Index j = 0; j < m; ++j)
-            logEmission[l][j] = -0.5 * square((screenOf(candidate(i, j)) - problem.screen[i]).norm() / sigmaD);
+            logEmission[l][j] = -0.5 * square((screenOf(candidate(i, j)) - problem.screen[i]).norm() / sigmaD)
+                + (params.vertexStates ? states.logVote[i][static_cast<std::size_t>(j)] : 0.0);
     }
 
     // 4.8.5.3: "the nearest stroke point is assigned to each contour", and psi_stroke compares
@@ -65,32 +122,62 @@ Mapping mapHmm(const MappingProblem& problem)
                     nearestPoint[static_cast<std::size_t>(c)] = strokeIndex.nearest(screenOf(problem.cloud[static_cast<std::size_t>(c)]));
     }
 
-    // Transition (4.48-4.53), one layer at a time.
+    // Per layer, what the transitions read of each state, gathered once: its screen position,
+    // depth (pixels), template vertex on screen, nearest stroke point, and its vertex among the
+    // layer's distinct vertices (a point's candidates are a few vertices from many faces, so
+    // the ring map is looked up per pair of distinct vertices, not per pair of states).
+    struct Layer {
+        std::vector<Eigen::Vector2d> screen, templ, strokePoint;
+        std::vector<double> depth;
+        std::vector<int> local;              // index into vertices
+        std::vector<std::uint32_t> vertices; // distinct, in order of first use
+    };
+    auto layerOf = [&](std::size_t point) {
+        Layer L;
+        const std::size_t m = problem.perPoint[point].size();
+        std::map<std::uint32_t, int> seen;
+        for (std::size_t j = 0; j < m; ++j) {
+            const int c = problem.perPoint[point][j];
+            const Candidate& k = problem.cloud[static_cast<std::size_t>(c)];
+            L.screen.push_back(screenOf(k));
+            L.templ.push_back(problem.templateScreen[k.vertex]);
+            L.strokePoint.push_back(problem.screen[static_cast<std::size_t>(nearestPoint[static_cast<std::size_t>(c)])]);
+            L.depth.push_back(axis.dot(Eigen::Vector3d(k.world[0], k.world[1], k.world[2])) * ppmm);
+            const auto [it, inserted] = seen.try_emplace(k.vertex, static_cast<int>(L.vertices.size()));
+            if (inserted)
+                L.vertices.push_back(k.vertex);
+            L.local.push_back(it->second);
+        }
+        return L;
+    };
+    Layer previous = layerOf(points[0]);
+    Eigen::MatrixXd hopCost;
+
+    // Transition (4.48-4.53), one layer at a time (viterbi() asks for layers in order).
     auto transition = [&](std::size_t l, Eigen::MatrixXd& logT) {
-        const std::size_t a = points[l - 1], b = points[l];
-        for (Eigen::Index j = 0; j < logT.rows(); ++j) {
-            const Candidate& cj = candidate(a, j);
-            const Eigen::Vector2d sj = screenOf(cj);
-            const Eigen::Vector3d wj(cj.world[0], cj.world[1], cj.world[2]);
-            const Eigen::Vector2d& tj = problem.templateScreen[cj.vertex];
-            for (Eigen::Index q = 0; q < logT.cols(); ++q) {
-                const Candidate& cq = candidate(b, q);
-                const Eigen::Vector2d sq = screenOf(cq);
-                double logP = 0;
-                if (params.useConnectivity) {
-                    const int hops = problem.rings.hops(cj.vertex, cq.vertex);
+        Layer next = layerOf(points[l]);
+        const Layer& a = previous;
+        if (params.useConnectivity) {
+            hopCost.resize(static_cast<Eigen::Index>(a.vertices.size()), static_cast<Eigen::Index>(next.vertices.size()));
+            for (std::size_t u = 0; u < a.vertices.size(); ++u)
+                for (std::size_t w = 0; w < next.vertices.size(); ++w) {
+                    const int hops = problem.rings.hops(a.vertices[u], next.vertices[w]);
                     const double psiC = hops < 0 ? params.unreachableHops : hops;
-                    logP -= 0.5 * square(psiC / params.sigmaC);
+                    hopCost(static_cast<Eigen::Index>(u), static_cast<Eigen::Index>(w)) = -0.5 * square(psiC / params.sigmaC);
                 }
+        }
+        for (Eigen::Index j = 0; j < logT.rows(); ++j) {
+            const std::size_t sj = static_cast<std::size_t>(j);
+            for (Eigen::Index q = 0; q < logT.cols(); ++q) {
+                const std::size_t sq = static_cast<std::size_t>(q);
+                double logP = 0;
+                if (params.useConnectivity)
+                    logP += hopCost(a.local[sj], next.local[sq]);
                 if (params.useStroke) {
                     // c' = screen xy and the depth along the view axis, both in pixels.
-                    const Eigen::Vector3d wq(cq.world[0], cq.world[1], cq.world[2]);
-                    const double dz = axis.dot(wq - wj) * ppmm;
-                    const double moved = std::sqrt((sq - sj).squaredNorm() + dz * dz);
-                    const int pj = nearestPoint[static_cast<std::size_t>(problem.perPoint[a][static_cast<std::size_t>(j)])];
-                    const int pq = nearestPoint[static_cast<std::size_t>(problem.perPoint[b][static_cast<std::size_t>(q)])];
-                    const double step
-                        = (problem.screen[static_cast<std::size_t>(pq)] - problem.screen[static_cast<std::size_t>(pj)]).norm();
+                    const double dz = next.depth[sq] - a.depth[sj];
+                    const double moved = std::sqrt((next.screen[sq] - a.screen[sj]).squaredNorm() + dz * dz);
+                    const double step = (next.strokePoint[sq] - a.strokePoint[sj]).norm();
                     // The ratio of 4.49, its denominator at least the stroke's sampling step
                     // (finer displacements are not resolved; two candidates sharing their
                     // nearest point would divide by zero).
@@ -98,13 +185,13 @@ Mapping mapHmm(const MappingProblem& problem)
                     logP -= 0.5 * square(psiStroke / params.sigmaStroke);
                 }
                 if (params.useSkeleton) {
-                    const Eigen::Vector2d& tq = problem.templateScreen[cq.vertex];
-                    const double psiSkel = ((sq - sj) - (tq - tj)).norm();
+                    const double psiSkel = ((next.screen[sq] - a.screen[sj]) - (next.templ[sq] - a.templ[sj])).norm();
                     logP -= 0.5 * square(psiSkel / sigmaSkel);
                 }
                 logT(j, q) = logP;
             }
         }
+        previous = std::move(next);
     };
     const ViterbiPath path = viterbi(logInitial, logEmission, transition);
 

@@ -15,6 +15,8 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <stdexcept>
+#include <string>
 
 namespace facesketch::sketch {
 
@@ -61,6 +63,9 @@ void MapperParams::validate() const
         fail("mapper parameter borderRings = ", borderRings, " must be in [0, 16]");
     if (similarFaces < 0)
         fail("mapper parameter similarFaces = ", similarFaces, " must be at least 0");
+    if (votePoolPerPoint < 1)
+        fail("mapper parameter votePoolPerPoint = ", votePoolPerPoint, " must be at least 1");
+    positive("sigmaVoteMm", sigmaVoteMm);
     if (maxCandidatesPerPoint < 1)
         fail("mapper parameter maxCandidatesPerPoint = ", maxCandidatesPerPoint, " must be at least 1");
     positive("sigmaS", sigmaS);
@@ -69,10 +74,56 @@ void MapperParams::validate() const
     positive("sigmaStroke", sigmaStroke);
     positive("sigmaSkelTau", sigmaSkelTau);
     nonNegative("unreachableHops", unreachableHops);
+    nonNegative("observationNoiseMm", observationNoiseMm);
+    nonNegative("alongStrokeNoiseMm", alongStrokeNoiseMm);
     nonNegative("lambda", lambda);
     nonNegative("alpha", alpha);
     nonNegative("beta", beta);
     nonNegative("heuristicEndpointRadiusTau", heuristicEndpointRadiusTau);
+}
+
+void setMapperParam(MapperParams& params, const std::string& assignment)
+{
+    const std::size_t eq = assignment.find('=');
+    if (eq == std::string::npos)
+        fail("mapper parameter '", assignment, "' is not NAME=VALUE");
+    const std::string name = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+    double value = 0;
+    try {
+        std::size_t used = 0;
+        value = std::stod(text, &used);
+        if (used != text.size())
+            throw std::invalid_argument(text);
+    } catch (const std::exception&) {
+        fail("mapper parameter ", name, ": '", text, "' is not a number");
+    }
+    const std::map<std::string, double*> reals { { "densifyGapPx", &params.densifyGapPx }, { "splineTension", &params.splineTension },
+        { "tauMm", &params.tauMm }, { "candidateRadiusTau", &params.candidateRadiusTau }, { "depthToleranceMm", &params.depthToleranceMm },
+        { "observationNoiseMm", &params.observationNoiseMm }, { "alongStrokeNoiseMm", &params.alongStrokeNoiseMm },
+        { "sigmaS", &params.sigmaS }, { "sigmaDTau", &params.sigmaDTau }, { "sigmaC", &params.sigmaC },
+        { "sigmaStroke", &params.sigmaStroke }, { "sigmaSkelTau", &params.sigmaSkelTau }, { "unreachableHops", &params.unreachableHops },
+        { "sigmaVoteMm", &params.sigmaVoteMm }, { "lambda", &params.lambda }, { "alpha", &params.alpha }, { "beta", &params.beta },
+        { "heuristicEndpointRadiusTau", &params.heuristicEndpointRadiusTau } };
+    const std::map<std::string, int*> integers { { "maxCandidatesPerPoint", &params.maxCandidatesPerPoint },
+        { "borderRings", &params.borderRings }, { "similarFaces", &params.similarFaces },
+        { "votePoolPerPoint", &params.votePoolPerPoint } };
+    const std::map<std::string, bool*> flags { { "ownContours", &params.ownContours }, { "viewPlaneOnly", &params.viewPlaneOnly },
+        { "acrossStrokeOnly", &params.acrossStrokeOnly }, { "useConnectivity", &params.useConnectivity },
+        { "useStroke", &params.useStroke }, { "useSkeleton", &params.useSkeleton }, { "vertexStates", &params.vertexStates },
+        { "voteEmission", &params.voteEmission }, { "heuristicConnectivity", &params.heuristicConnectivity } };
+    if (const auto r = reals.find(name); r != reals.end()) {
+        *r->second = value;
+    } else if (const auto i = integers.find(name); i != integers.end()) {
+        if (value != std::floor(value) || std::abs(value) > 1e9)
+            fail("mapper parameter ", name, " = ", text, " must be a whole number");
+        *i->second = static_cast<int>(value);
+    } else if (const auto f = flags.find(name); f != flags.end()) {
+        if (value != 0 && value != 1)
+            fail("mapper parameter ", name, " = ", text, " must be 0 or 1");
+        *f->second = value == 1;
+    } else {
+        fail("mapper parameter '", name, "' is unknown (see MapperParams in sketch/mapper.h)");
+    }
 }
 
 namespace {
@@ -255,8 +306,12 @@ StrokeReading StrokeReader::read(const Stroke& stroke, const Mesh& currentFace, 
                                 && impl_->borderHops[c.vertex] < params.borderRings;
                         }),
             cloud.end());
-    const std::vector<std::vector<int>> perPoint = candidatesPerPoint(
-        cloud, camera, projected.screen, projected.world, radiusPx, params.depthToleranceMm, params.maxCandidatesPerPoint);
+    // The HMM's vertex states group a larger pool (MapperParams::vertexStates).
+    const int perPointLimit = kind == MapperKind::Hmm && params.vertexStates
+        ? std::max(params.maxCandidatesPerPoint, params.votePoolPerPoint)
+        : params.maxCandidatesPerPoint;
+    const std::vector<std::vector<int>> perPoint
+        = candidatesPerPoint(cloud, camera, projected.screen, projected.world, radiusPx, params.depthToleranceMm, perPointLimit);
     std::size_t withCandidates = 0;
     for (std::size_t i = 0; i < n; ++i) {
         reading.candidateCounts[i] = static_cast<int>(perPoint[i].size());
@@ -294,8 +349,12 @@ StrokeReading StrokeReader::read(const Stroke& stroke, const Mesh& currentFace, 
     const Eigen::Vector3d axis = viewAxis(camera);
     for (VertexObservation& o : reading.observations) {
         o.viewPlaneOnly = params.viewPlaneOnly;
-        if (params.acrossStrokeOnly)
+        o.noiseMm = params.observationNoiseMm;
+        if (params.acrossStrokeOnly) {
             o.acrossStroke = acrossStrokeAt(projected.world, static_cast<std::size_t>(o.strokePoint), axis);
+            if (!o.acrossStroke.isZero())
+                o.alongNoiseMm = params.alongStrokeNoiseMm;
+        }
     }
     if (withCandidates < n)
         reading.message

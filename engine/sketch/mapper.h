@@ -71,7 +71,11 @@ struct MapperParams {
     /// of a face apart but not a nose from its cheek.
     double depthToleranceMm = 40.0;
     /// At most this many candidates per point, the nearest on screen (bounds m in O(n m^2)).
-    int maxCandidatesPerPoint = 48;
+    /// Not given by the thesis. 96 (48 before 2 December): with the contours of 230 training
+    /// faces stacked, 48 candidates cover a disc of a pixel or two, too small to hold the right
+    /// vertex as often as it could (`eval strokes`, 8 test faces, 1 px noise: the HMM's
+    /// observations within 1 mm of their vertex's true image 0.46 -> 0.53 in the front view).
+    int maxCandidatesPerPoint = 96;
     /// Silhouette candidates (not labelled) on vertices fewer than this many rings from the
     /// mesh's open border are dropped: a face mask's border seen edge-on is a silhouette of
     /// the mask, not of the face (issue 12's suspect). 0 keeps them all (the thesis).
@@ -103,10 +107,26 @@ struct MapperParams {
     /// same stroke), the faces most like it place each vertex nearest where the sketched face
     /// has it, so the vertex under a stroke point is more often the right one.
     int similarFaces = 0;
+    /// Standard deviation (mm) of every observation's error (VertexObservation::noiseMm): the
+    /// rebuilt face is pulled towards the observations by their weight against the model
+    /// instead of passing exactly through them. 0 pins them (the thesis' hard constraints).
+    double observationNoiseMm = 0.0;
+    /// With acrossStrokeOnly: when above 0, observations also measure the vertex's image along
+    /// the stroke, with this standard deviation (mm; VertexObservation::alongNoiseMm), so the
+    /// stroke says roughly, not precisely, which vertex lies under which point. 0: along the
+    /// stroke is left to the model.
+    double alongStrokeNoiseMm = 0.0;
 
     // --- HMM (4.8.5) ---
-    double sigmaS = 0.4;             ///< initial probability, eq. 4.45
-    double sigmaDTau = 2.0;          ///< emission, eq. 4.47: sigma_d = sigmaDTau x tau
+    double sigmaS = 0.4; ///< initial probability, eq. 4.45
+    /// Emission, eq. 4.47: sigma_d = sigmaDTau x tau. The thesis' 2 tau (thesis()) is nearly
+    /// flat over a point's candidates, which then lie within a few pixels: the transitions
+    /// alone choose. 0.3 tau (1.5 mm at the face's centre) lets the distance to the stroke
+    /// count; with 96 candidates per point it takes the HMM from 0.530 / 0.651 / 0.433 / 0.390
+    /// of the mean face's error to 0.491 / 0.603 / 0.390 / 0.361 (front / profile / 34 / all,
+    /// synthetic high set, 8 test faces, 1 px noise) and from 0.961 / 0.597 / 0.818 / 0.607
+    /// to 0.914 / 0.577 / 0.751 / 0.567 on an ICT import (docs/sketching.md).
+    double sigmaDTau = 0.3;
     double sigmaC = 3.0;             ///< connectivity, eq. 4.48 (hops in the k-ring map)
     double sigmaStroke = 0.5;        ///< stroke ratio, eq. 4.50
     double sigmaSkelTau = 1.0 / 6.5; ///< skeleton, eq. 4.52: sigma_skel = sigmaSkelTau x tau
@@ -117,6 +137,20 @@ struct MapperParams {
     bool useConnectivity = true; ///< gamma_1 (4.48) on; off for the thesis' comparison of 4.9
     bool useStroke = true;       ///< gamma_2 (4.50)
     bool useSkeleton = true;     ///< gamma_3 (4.52)
+    /// Beyond the thesis: the HMM's states at a point are distinct vertices, not candidates.
+    /// The point's `votePoolPerPoint` nearest candidates (of every training face) are grouped
+    /// by vertex, each vertex standing as its nearest candidate (in the emission of 4.47 and
+    /// the transitions), and the maxCandidatesPerPoint nearest vertices are kept: m states are
+    /// m different vertices rather than a few vertices' copies from many faces, so the right
+    /// vertex is more often among them at the same O(n m^2). false: the thesis' states.
+    bool vertexStates = false;
+    /// With vertexStates: a vertex's emission also has the log of its kernel density at the
+    /// point, sum over its candidates of exp(-d^2 / 2 sigma_vote^2) (d: screen distance), and
+    /// the densest vertices are kept instead of the nearest: a vertex many training faces put
+    /// on this line outweighs one face's stray vertex.
+    bool voteEmission = false;
+    int votePoolPerPoint = 256; ///< candidates per point grouped into vertex states
+    double sigmaVoteMm = 1.0;   ///< sigma_vote, mm on screen at the face's centre
 
     // --- heuristic (4.6.1) ---
     double lambda = 1.0; ///< weight of the endpoint term of eq. 4.29 (in tau units)
@@ -134,17 +168,30 @@ struct MapperParams {
 
     /// The thesis' values: the defaults, but observations pinning the stroke point in 3D
     /// (4.6.2: the candidate adapted to the stroke, with its depth) instead of across the stroke
-    /// in the view plane.
+    /// in the view plane, sigma_d = 2 tau (4.8.5.2) and the 48 candidates per point used before
+    /// 2 December.
     static MapperParams thesis()
     {
         MapperParams p;
+        p.sigmaDTau = 2.0;
+        p.maxCandidatesPerPoint = 48;
         p.viewPlaneOnly = false;
         p.acrossStrokeOnly = false;
+        p.observationNoiseMm = 0.0;
+        p.alongStrokeNoiseMm = 0.0;
+        p.vertexStates = false;
+        p.voteEmission = false;
         return p;
     }
     /// Throws Error naming the first field that is not positive/finite where it must be.
     void validate() const;
 };
+
+/// Sets one field of `params` from "NAME=VALUE" (NAME a MapperParams field as spelled above,
+/// VALUE a number; booleans 0 or 1, integers whole), for studies from the command line. Throws
+/// Error naming an unknown field or a value that does not parse, leaving params unchanged; the
+/// value's range is checked by validate() when the parameters are used.
+void setMapperParam(MapperParams& params, const std::string& assignment);
 
 /// One per (model, candidate faces); reused for every stroke. Holds the candidate faces'
 /// curvature on the GPU (computed once here, as the thesis' offline pass) and the k-ring map.

@@ -9,7 +9,16 @@
 
 namespace facesketch::stats {
 
-void Observations::addVertex(Eigen::Index vertex, const Eigen::Vector3d& xyz)
+namespace {
+double checkedNoise(double noiseVariance, const char* where, Eigen::Index vertex)
+{
+    if (!std::isfinite(noiseVariance) || noiseVariance < 0.0)
+        fail(where, ": the noise variance ", noiseVariance, " of vertex ", vertex, " is not a finite value >= 0");
+    return noiseVariance;
+}
+} // namespace
+
+void Observations::addVertex(Eigen::Index vertex, const Eigen::Vector3d& xyz, double noiseVariance)
 {
     if (vertex < 0)
         fail("Observations::addVertex: vertex ", vertex, " is negative");
@@ -20,11 +29,19 @@ void Observations::addVertex(Eigen::Index vertex, const Eigen::Vector3d& xyz)
     b.rows = 3;
     b.P = Eigen::Matrix3d::Identity();
     b.y = xyz;
+    b.noise.setConstant(checkedNoise(noiseVariance, "Observations::addVertex", vertex));
     blocks_.push_back(b);
     size_ += 3;
 }
 
-void Observations::addProjectedVertex(Eigen::Index vertex, const Eigen::Matrix<double, 2, 3>& P, const Eigen::Vector2d& image)
+void Observations::addProjectedVertex(
+    Eigen::Index vertex, const Eigen::Matrix<double, 2, 3>& P, const Eigen::Vector2d& image, double noiseVariance)
+{
+    addProjectedVertex(vertex, P, image, Eigen::Vector2d::Constant(noiseVariance));
+}
+
+void Observations::addProjectedVertex(
+    Eigen::Index vertex, const Eigen::Matrix<double, 2, 3>& P, const Eigen::Vector2d& image, const Eigen::Vector2d& noiseVariances)
 {
     if (vertex < 0)
         fail("Observations::addProjectedVertex: vertex ", vertex, " is negative");
@@ -39,11 +56,13 @@ void Observations::addProjectedVertex(Eigen::Index vertex, const Eigen::Matrix<d
     b.rows = 2;
     b.P.topRows<2>() = P;
     b.y.head<2>() = image;
+    b.noise.head<2>() << checkedNoise(noiseVariances[0], "Observations::addProjectedVertex", vertex),
+        checkedNoise(noiseVariances[1], "Observations::addProjectedVertex", vertex);
     blocks_.push_back(b);
     size_ += 2;
 }
 
-void Observations::addVertexAlong(Eigen::Index vertex, const Eigen::Vector3d& direction, double value)
+void Observations::addVertexAlong(Eigen::Index vertex, const Eigen::Vector3d& direction, double value, double noiseVariance)
 {
     if (vertex < 0)
         fail("Observations::addVertexAlong: vertex ", vertex, " is negative");
@@ -58,8 +77,28 @@ void Observations::addVertexAlong(Eigen::Index vertex, const Eigen::Vector3d& di
     b.rows = 1;
     b.P.row(0) = direction.transpose();
     b.y(0) = value;
+    b.noise[0] = checkedNoise(noiseVariance, "Observations::addVertexAlong", vertex);
     blocks_.push_back(b);
     size_ += 1;
+}
+
+bool Observations::noisy() const
+{
+    for (const Block& b : blocks_)
+        if ((b.noise.head(b.rows).array() > 0.0).any())
+            return true;
+    return false;
+}
+
+Eigen::VectorXd Observations::noiseVariances() const
+{
+    Eigen::VectorXd n(size_);
+    Eigen::Index row = 0;
+    for (const Block& b : blocks_) {
+        n.segment(row, b.rows) = b.noise.head(b.rows);
+        row += b.rows;
+    }
+    return n;
 }
 
 void Observations::addCoordinate(Eigen::Index index, double value)
@@ -178,6 +217,23 @@ ComponentPosterior condition(const Ppca& model, const Observations& observations
     const auto q = static_cast<double>(model.latentDim());
     const Eigen::MatrixXd WO = observations.apply(model.W);
     const Eigen::VectorXd r = observations.residual(model.mean);
+    if (observations.noisy()) {
+        // y ~ N(P mu, D + W_O W_O^T), D = diag(sigma^2 + noise): the same algebra with D^-1
+        // weighting every row (Bishop 2006, 12.2.1 with a diagonal noise).
+        const Eigen::VectorXd D = observations.noiseVariances().array() + model.sigma2;
+        const Eigen::VectorXd Dinv = D.cwiseInverse();
+        Eigen::MatrixXd M = Eigen::MatrixXd::Identity(model.latentDim(), model.latentDim());
+        M.selfadjointView<Eigen::Lower>().rankUpdate((Dinv.cwiseSqrt().asDiagonal() * WO).transpose());
+        const Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> llt(M);
+        const Eigen::VectorXd Wr = WO.transpose() * Dinv.cwiseProduct(r);
+        ComponentPosterior post;
+        post.latent = llt.solve(Wr);
+        const double explained = llt.matrixL().solve(Wr).squaredNorm();
+        const double quad = std::max(0.0, r.cwiseProduct(Dinv).dot(r) - explained);
+        const double logDet = D.array().log().sum() + 2.0 * llt.matrixLLT().diagonal().array().log().sum();
+        post.logLikelihood = -0.5 * (o * std::log(2.0 * std::numbers::pi) + logDet + quad);
+        return post;
+    }
     // Only the lower triangle of M = sigma^2 I + W_O^T W_O is formed; the LLT reads no more.
     Eigen::MatrixXd M = Eigen::MatrixXd::Identity(model.latentDim(), model.latentDim()) * model.sigma2;
     M.selfadjointView<Eigen::Lower>().rankUpdate(WO.transpose());
@@ -198,7 +254,9 @@ ComponentPosterior condition(const Ppca& model, const Observations& observations
 Eigen::VectorXd conditionalMean(const Ppca& model, const Observations& observations, const ComponentPosterior& posterior)
 {
     Eigen::VectorXd t = model.mean + model.W * posterior.latent;
-    const Eigen::VectorXd unexplained = observations.residual(t);
+    Eigen::VectorXd unexplained = observations.residual(t);
+    if (observations.noisy())
+        unexplained.array() *= model.sigma2 / (observations.noiseVariances().array() + model.sigma2);
     observations.addTransposed(unexplained, t);
     return t;
 }

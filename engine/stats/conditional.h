@@ -38,18 +38,29 @@ namespace facesketch::stats {
 
 /// Measurements of one vector. A coordinate may be measured once only: two measurements
 /// of the same coordinate would see the same noise twice, which the model cannot express.
+///
+/// Every vertex measurement may carry a noise variance (squared units, mm^2 for faces, per
+/// measured row, default 0): the measurement is then y = P t + e with e ~ N(0, noise I), on top
+/// of the model's own sigma^2. A noisy measurement pulls the face towards it by its weight
+/// instead of pinning it (condition() and conditionalMean() below); with every noise 0 the
+/// maths is exactly the noiseless one of this file's header.
 class Observations {
 public:
     /// The full position of vertex v: t(3v .. 3v+2) = xyz.
-    void addVertex(Eigen::Index vertex, const Eigen::Vector3d& xyz);
+    void addVertex(Eigen::Index vertex, const Eigen::Vector3d& xyz, double noiseVariance = 0.0);
 
     /// The image of vertex v in a view: P t(3v .. 3v+2) = image. P is 2 by 3 with orthonormal
     /// rows (|P P^T - I| <= 1e-9), e.g. the x and y rows of a rotation.
-    void addProjectedVertex(Eigen::Index vertex, const Eigen::Matrix<double, 2, 3>& P, const Eigen::Vector2d& image);
+    void addProjectedVertex(
+        Eigen::Index vertex, const Eigen::Matrix<double, 2, 3>& P, const Eigen::Vector2d& image, double noiseVariance = 0.0);
+    /// The same with a noise variance per row of P (e.g. a drawn line's position across it
+    /// known well, along it poorly).
+    void addProjectedVertex(
+        Eigen::Index vertex, const Eigen::Matrix<double, 2, 3>& P, const Eigen::Vector2d& image, const Eigen::Vector2d& noiseVariances);
 
     /// One direction of vertex v: d . t(3v .. 3v+2) = value, d a unit vector (|d| - 1 within
     /// 1e-9), e.g. the direction across a drawn line in its view plane.
-    void addVertexAlong(Eigen::Index vertex, const Eigen::Vector3d& direction, double value);
+    void addVertexAlong(Eigen::Index vertex, const Eigen::Vector3d& direction, double value, double noiseVariance = 0.0);
 
     /// One coordinate: t(index) = value (for vectors that are not faces, e.g. the latent
     /// vectors of the segment correlation, thesis 4.2.5).
@@ -57,6 +68,10 @@ public:
 
     /// Number of scalar measurements o (3 per vertex, 2 per projected vertex, 1 per coordinate).
     Eigen::Index size() const { return size_; }
+    /// Whether any measurement has a noise variance above 0.
+    bool noisy() const;
+    /// The noise variance of every scalar measurement, o values (0 for coordinates).
+    Eigen::VectorXd noiseVariances() const;
     bool empty() const { return blocks_.empty(); }
 
     /// The measurements of the vertices v with local[v] >= 0, renumbered so that vertex v
@@ -82,11 +97,12 @@ public:
 
 private:
     struct Block {
-        Eigen::Index first = 0;                      // first coordinate touched
-        int width = 0;                               // coordinates touched: 1 or 3
-        int rows = 0;                                // measurements: 1, 2 or 3 (1 of a vertex: a direction)
-        Eigen::Matrix3d P = Eigen::Matrix3d::Zero(); // rows by width used
-        Eigen::Vector3d y = Eigen::Vector3d::Zero(); // rows used
+        Eigen::Index first = 0;                          // first coordinate touched
+        int width = 0;                                   // coordinates touched: 1 or 3
+        int rows = 0;                                    // measurements: 1, 2 or 3 (1 of a vertex: a direction)
+        Eigen::Matrix3d P = Eigen::Matrix3d::Zero();     // rows by width used
+        Eigen::Vector3d y = Eigen::Vector3d::Zero();     // rows used
+        Eigen::Vector3d noise = Eigen::Vector3d::Zero(); // variance of each row's measurement
     };
     std::vector<Block> blocks_;
     Eigen::Index size_ = 0;
@@ -105,9 +121,14 @@ struct ComponentPosterior {
 };
 
 /// Conditions one PPCA on the measurements. Throws Error if they do not fit its dimension.
+/// With noisy measurements (Observations::noisy) the covariance of y is D + W_O W_O^T with
+/// D = diag(sigma^2 + noise_i): M = I + W_O^T D^-1 W_O, latent M^-1 W_O^T D^-1 r, and
+/// log|D + W_O W_O^T| = log|D| + log|M| (still O(o q^2)).
 ComponentPosterior condition(const Ppca& model, const Observations& observations);
 
-/// E[t | y] under one PPCA (d values), from the posterior computed by condition().
+/// E[t | y] under one PPCA (d values), from the posterior computed by condition(). A measured
+/// coordinate with noise n gets mu + W z plus sigma^2 / (sigma^2 + n) of the measurement's
+/// residual (all of it when n = 0: the measurement itself).
 Eigen::VectorXd conditionalMean(const Ppca& model, const Observations& observations, const ComponentPosterior& posterior);
 
 struct Inference {

@@ -201,3 +201,51 @@ TEST_CASE("conditional: rejects overlapping, out-of-range and non-finite measure
     REQUIRE_THROWS_WITH(obs.addProjectedVertex(0, skew, Eigen::Vector2d::Zero()), Catch::Contains("orthonormal"));
     REQUIRE_THROWS_AS(obs.addCoordinate(-1, 0.0), Error);
 }
+
+TEST_CASE("conditional: noisy measurements match the dense Gaussian formulas and pull rather than pin")
+{
+    Random random(41);
+    const Ppca model = randomPpca(random, 24, 3, 2.0, 1.0, 0.3);
+    const Eigen::VectorXd t = model.mean + model.W * random.normalMatrix(3, 1);
+    const Eigen::Matrix<double, 2, 3> P = randomView(random);
+    const Eigen::Vector3d d = random.normalMatrix(3, 1).normalized();
+    Observations obs;
+    obs.addVertex(1, t.segment<3>(3) + Eigen::Vector3d(0.3, -0.2, 0.1), 0.5);
+    obs.addProjectedVertex(3, P, P * t.segment<3>(9) + Eigen::Vector2d(0.4, 0.1), Eigen::Vector2d(0.0, 2.0));
+    obs.addVertexAlong(5, d, d.dot(t.segment<3>(15)) - 0.3, 1.5);
+    obs.addVertex(6, t.segment<3>(18));
+    REQUIRE(obs.noisy());
+    const Eigen::VectorXd n = obs.noiseVariances();
+    REQUIRE(n.size() == 9);
+    CHECK(n[3] == 0.0);
+    CHECK(n[4] == 2.0);
+
+    // Dense: t ~ N(mu, C), y = P t + e, e ~ N(0, diag(n)).
+    const Eigen::MatrixXd C = model.sigma2 * Eigen::MatrixXd::Identity(24, 24) + model.W * model.W.transpose();
+    const Eigen::MatrixXd Pd = obs.denseP(24);
+    const Eigen::MatrixXd S = Pd * C * Pd.transpose() + Eigen::MatrixXd(n.asDiagonal());
+    const Eigen::VectorXd r = obs.values() - Pd * model.mean;
+    const Eigen::VectorXd expected = model.mean + C * Pd.transpose() * S.ldlt().solve(r);
+    const double logLikelihood = -0.5 * (9 * std::log(2.0 * 3.14159265358979323846) + std::log(S.determinant()) + r.dot(S.ldlt().solve(r)));
+    const ComponentPosterior post = condition(model, obs);
+    CHECK((conditionalMean(model, obs, post) - expected).norm() < 1e-9);
+    CHECK(std::abs(post.logLikelihood - logLikelihood) < 1e-8);
+
+    // A noisy measurement is not met exactly; a noiseless one still is, and vanishing noise
+    // tends to the pinned result.
+    const Eigen::VectorXd mean = conditionalMean(model, obs, post);
+    CHECK((mean.segment<3>(3) - (t.segment<3>(3) + Eigen::Vector3d(0.3, -0.2, 0.1))).norm() > 1e-3);
+    CHECK((mean.segment<3>(18) - t.segment<3>(18)).norm() < 1e-9);
+    Observations pinned, almost;
+    pinned.addVertex(1, t.segment<3>(3));
+    pinned.addVertexAlong(5, d, 0.7);
+    almost.addVertex(1, t.segment<3>(3), 1e-10);
+    almost.addVertexAlong(5, d, 0.7, 1e-10);
+    CHECK((conditionalMean(model, pinned, condition(model, pinned)) - conditionalMean(model, almost, condition(model, almost))).norm()
+        < 1e-6);
+
+    Observations bad;
+    REQUIRE_THROWS_WITH(bad.addVertex(2, Eigen::Vector3d::Zero(), -1.0), Catch::Contains("noise variance -1"));
+    REQUIRE_THROWS_WITH(bad.addVertexAlong(2, d, 0.0, std::numeric_limits<double>::quiet_NaN()), Catch::Contains("noise variance"));
+    REQUIRE(bad.empty());
+}
