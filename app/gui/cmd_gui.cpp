@@ -1526,9 +1526,8 @@ void App::run()
             continue;
         }
         panels();
-        scene_->setVisible(faceItem_, false);
-        scene_->setVisible(contourItem_, false);
-        scene_->record(frame.cmd, frame.slot, orbitCamera(nav_->view()), frame.extent);
+        if (doc_)
+            scene_->record(frame.cmd, frame.slot, orbitCamera(nav_->view()), frame.extent);
         window_.end(frame, capture);
 
         if (doc_) {
