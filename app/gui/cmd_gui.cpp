@@ -1428,9 +1428,18 @@ void App::run()
         // in two) it sleeps until an input event, waking every quarter second for the autosave.
         // Scripted runs count frames and always draw.
         const bool scripted = c_.benchFrames > 0 || c_.quitAfterFrames > 0;
-        if (!scripted && idleFrames_ >= 3)
+        if (!scripted && idleFrames_ >= 3) {
             glfwWaitEventsTimeout(0.25);
-        else
+            // Woken by the timeout, with no input and the same window size: nothing to draw.
+            int fw = 0, fh = 0;
+            glfwGetFramebufferSize(window_.glfw(), &fw, &fh);
+            const bool resized = nav_ && (fw != nav_->view().width || fh != nav_->view().height);
+            if (!inputSeen_ && !resized && !quit_ && !window_.shouldClose() && !job_) {
+                if (doc_)
+                    autosave_->tick(*doc_, glfwGetTime());
+                continue;
+            }
+        } else
             glfwPollEvents();
         pollJob();
         // Quitting draws one more frame when it is to be captured (--screenshot).
