@@ -6,8 +6,9 @@
 // framebuffer pixels; contentScale() scales the ImGui style and fonts and converts GLFW's
 // cursor positions (screen coordinates) to pixels.
 //
-// Render pass: 4x MSAA colour and depth resolved into the swapchain image (samples() = 4), or,
-// with samples 1, the swapchain image itself. The MSAA and depth images are shared by the
+// Render pass: 4x MSAA colour and depth resolved into the swapchain image (samples() = 4), then a
+// second subpass where ImGui draws into that image (one sample per pixel); or, with samples 1,
+// one subpass drawing into the swapchain image itself. The MSAA and depth images are shared by the
 // frames in flight; the pass's external dependency orders one frame's use after the last.
 
 #include "gpu/device.h"
@@ -53,6 +54,9 @@ public:
     VkRenderPass renderPass() const { return renderPass_; }
     VkFormat colorFormat() const;
     int samples() const { return samples_; }
+    /// The render pass's subpass ImGui draws in: 1 with MSAA (into the resolved image, one
+    /// sample per pixel), 0 without. The scene draws in subpass 0.
+    std::uint32_t imguiSubpass() const { return samples_ == 4 ? 1 : 0; }
     /// Framebuffer pixels per screen coordinate (1 on a normal display, 2 on a 2x HiDPI one).
     double contentScale() const;
     bool shouldClose() const;

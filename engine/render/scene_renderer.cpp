@@ -53,7 +53,8 @@ struct Item {
     // Meshes only: the colour of the style (when no per-vertex colours) and the triangles.
     glm::vec4 styleColor {};
     bool perVertexColors = false;
-    Triangles faces; // kept for the normals of updateMesh
+    bool opaque = false; // every vertex's alpha is 1: drawn without blending (the same colours)
+    Triangles faces;     // kept for the normals of updateMesh
     gpu::Buffer indices;
     std::uint32_t indexCount = 0;
 };
@@ -119,8 +120,8 @@ struct SceneRenderer::Impl {
     VkPipelineLayout layout = VK_NULL_HANDLE;
     VkDescriptorSetLayout overlaySetLayout = VK_NULL_HANDLE;
     VkPipelineLayout overlayLayout = VK_NULL_HANDLE;
-    // Built on first use: [topology][depth test], and the overlay.
-    std::array<std::array<VkPipeline, 2>, TopologyCount> pipelines {};
+    // Built on first use, by pipelineKey(), and the overlay.
+    std::map<std::uint32_t, VkPipeline> pipelines;
     VkPipeline overlayPipeline = VK_NULL_HANDLE;
 
     std::map<DrawId, Item> items; // ordered by id: the order added
@@ -192,10 +193,8 @@ struct SceneRenderer::Impl {
             destroyOverlayCopy(copy);
         for (Retired& r : retired)
             destroyRetired(r);
-        for (auto& perTopology : pipelines)
-            for (VkPipeline p : perTopology)
-                if (p)
-                    vkDestroyPipeline(device.device, p, nullptr);
+        for (auto& [key, p] : pipelines)
+            vkDestroyPipeline(device.device, p, nullptr);
         if (overlayPipeline)
             vkDestroyPipeline(device.device, overlayPipeline, nullptr);
         vkDestroyPipelineLayout(device.device, overlayLayout, nullptr);
@@ -273,16 +272,22 @@ struct SceneRenderer::Impl {
         return id;
     }
 
-    VkPipeline pipeline(Topology topology, bool depthTest)
+    // One pipeline per topology, depth test, DRAW_MODE_* (the fragment shader's specialisation)
+    // and blending; opaque meshes are drawn without blending, which saves lavapipe reading back
+    // every covered sample.
+    VkPipeline pipeline(Topology topology, bool depthTest, std::uint32_t mode, bool blend)
     {
-        VkPipeline& slot = pipelines[topology][depthTest ? 1 : 0];
+        const std::uint32_t key = (std::uint32_t(topology) << 8) | (mode << 2) | (depthTest ? 2u : 0u) | (blend ? 1u : 0u);
+        VkPipeline& slot = pipelines[key];
         if (!slot)
-            slot = createPipeline(topology, depthTest, false);
+            slot = createPipeline(topology, depthTest, false, mode, blend);
         return slot;
     }
 
-    VkPipeline createPipeline(Topology topology, bool depthTest, bool overlayPass)
+    VkPipeline createPipeline(Topology topology, bool depthTest, bool overlayPass, std::uint32_t mode = DRAW_MODE_LIT, bool blended = true)
     {
+        const VkSpecializationMapEntry modeEntry { 0, 0, sizeof(std::uint32_t) };
+        VkSpecializationInfo specialization { 1, &modeEntry, sizeof(mode), &mode };
         VkPipelineShaderStageCreateInfo stages[2]
             = { gpu::makeStruct<VkPipelineShaderStageCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO),
                   gpu::makeStruct<VkPipelineShaderStageCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO) };
@@ -292,6 +297,7 @@ struct SceneRenderer::Impl {
         stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
         stages[1].module = overlayPass ? overlayFrag : frag;
         stages[1].pName = "main";
+        stages[1].pSpecializationInfo = overlayPass ? nullptr : &specialization;
 
         VkVertexInputBindingDescription binding { 0, sizeof(DrawVertex), VK_VERTEX_INPUT_RATE_VERTEX };
         VkVertexInputAttributeDescription attributes[3] = { { 0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(DrawVertex, position) },
@@ -333,7 +339,7 @@ struct SceneRenderer::Impl {
         depthState.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
 
         VkPipelineColorBlendAttachmentState blendAttachment {};
-        blendAttachment.blendEnable = VK_TRUE;
+        blendAttachment.blendEnable = blended ? VK_TRUE : VK_FALSE;
         blendAttachment.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
         blendAttachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
         blendAttachment.colorBlendOp = VK_BLEND_OP_ADD;
@@ -442,10 +448,12 @@ void writeMeshVertices(Item& item, const Vertices& V, const Vertices& N)
 void paintMesh(Item& item, const std::vector<glm::vec4>& colors)
 {
     item.perVertexColors = !colors.empty();
+    item.opaque = true;
     for (size_t v = 0; v < item.vertices.size(); ++v) {
         const glm::vec4 c = colors.empty() ? item.styleColor : colors[v];
         float* d = item.vertices[v].color;
         d[0] = c.r, d[1] = c.g, d[2] = c.b, d[3] = c.a;
+        item.opaque = item.opaque && c.a == 1.0f;
     }
 }
 
@@ -680,7 +688,7 @@ void SceneRenderer::record(VkCommandBuffer cmd, std::uint32_t slot, const Camera
     auto draw = [&](Item& item) {
         im.refresh(item, slot);
         const Topology topology = topologyOf(item.kind);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, im.pipeline(topology, item.depthTest));
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, im.pipeline(topology, item.depthTest, item.mode, !item.opaque));
         if (topology == LineList)
             vkCmdSetLineWidth(cmd, std::clamp(item.size, 1.0f, maxLineWidth));
         const bool screen = item.kind == Kind::ScreenPolyline;

@@ -22,6 +22,8 @@
 // Draw order: every depth-tested item in the order added, then the overlay, then every item
 // without depth test (screen polylines, LineStyle::depthTest = false) in the order added.
 // Blending: colour = src.rgb * src.a + dst.rgb * (1 - src.a), alpha = src.a + dst.a * (1 - src.a).
+// A mesh whose colours all have alpha 1 is drawn without blending (the same result, and a
+// software rasteriser then need not read back the samples it covers).
 // Colours are written as given (linear values into a UNORM target, as in the PNGs).
 
 #include "core/mesh.h"

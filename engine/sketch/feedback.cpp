@@ -27,7 +27,7 @@ InterpretedStroke interpretStroke(const StrokeReading& reading, const Mesh& face
     return out;
 }
 
-std::vector<std::pair<int, double>> mostSimilarFaces(const Mesh& face, const std::vector<Mesh>& faces, int k)
+std::vector<std::pair<int, double>> mostSimilarFaces(const Mesh& face, std::span<const Mesh> faces, int k)
 {
     std::vector<std::pair<int, double>> all;
     for (size_t i = 0; i < faces.size(); ++i) {

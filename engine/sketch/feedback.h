@@ -9,6 +9,7 @@
 #include "sketch/reading.h"
 
 #include <Eigen/Core>
+#include <span>
 #include <vector>
 
 namespace facesketch::sketch {
@@ -26,6 +27,7 @@ InterpretedStroke interpretStroke(const StrokeReading& reading, const Mesh& face
 
 /// The k faces of `faces` nearest `face` by mean per-vertex distance (mm), nearest first, as
 /// (index, distance). Throws Error for a face of another vertex count (naming its index).
-std::vector<std::pair<int, double>> mostSimilarFaces(const Mesh& face, const std::vector<Mesh>& faces, int k);
+/// A span, so that a caller can search a prefix of its faces (the training ones) without copying.
+std::vector<std::pair<int, double>> mostSimilarFaces(const Mesh& face, std::span<const Mesh> faces, int k);
 
 } // namespace facesketch::sketch

@@ -163,6 +163,32 @@ TEST_CASE("scene renderer: mesh colours change in place and hidden or removed it
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
 
+TEST_CASE("scene renderer: an opaque mesh replaces what is behind it and a translucent one blends by its alpha")
+{
+    // Opaque meshes are drawn without blending; one vertex colour below alpha 1 switches the
+    // mesh back to the blended pipeline, and opaque colours switch it back again.
+    const int size = 48;
+    const Mesh sphere = makeIcosphere(1.0, 2);
+    const Camera camera = frameSphere({ 0, 0, 0 }, 1.0, { 0, 0 }, size, size);
+    SceneRenderer scene(test::device(), { .color = VK_FORMAT_R8G8B8A8_UNORM, .depth = VK_FORMAT_D32_SFLOAT, .samples = 1 }, 1);
+    const DrawId id = scene.addMesh(sphere, MeshStyle { { 1, 0, 0, 1 }, false });
+    Image image = drawDynamic(scene, 0, camera, size, size, { 0, 0, 1, 1 });
+    const std::uint8_t* centre = image.at(size / 2, size / 2);
+    REQUIRE((centre[0] == 255 && centre[1] == 0 && centre[2] == 0 && centre[3] == 255));
+
+    scene.setMeshColors(id, std::vector<glm::vec4>(sphere.V.rows(), glm::vec4(1, 0, 0, 0.5f)));
+    image = drawDynamic(scene, 0, camera, size, size, { 0, 0, 1, 1 });
+    centre = image.at(size / 2, size / 2);
+    // 0.5 red over blue: half of each (unorm rounding), alpha 0.5 + 1 * 0.5 = 1.
+    REQUIRE((std::abs(int(centre[0]) - 128) <= 1 && centre[1] == 0 && std::abs(int(centre[2]) - 128) <= 1 && centre[3] == 255));
+
+    scene.setMeshColors(id, {});
+    image = drawDynamic(scene, 0, camera, size, size, { 0, 0, 1, 1 });
+    centre = image.at(size / 2, size / 2);
+    REQUIRE((centre[0] == 255 && centre[1] == 0 && centre[2] == 0 && centre[3] == 255));
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
 TEST_CASE("scene renderer: the overlay blends by its alpha as the CPU computes it, row 0 at the top")
 {
     const int w = 40, h = 30;
