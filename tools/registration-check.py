@@ -2,7 +2,7 @@
 """The realistic check of issue 15 (docs/registration.md): ICT-FaceKit faces become "scans" of
 another topology (the shared-topology simplification of `import ict-facekit --vertices`), with a
 hole cut in the left cheek, 0.2 mm Gaussian noise on every vertex and feature points at ICT's
-landmarks (no ears: a face mask); the synthetic high-resolution template is registered onto each,
+landmarks (the ears' too: the scans have ears; --mask leaves them out, as for a face mask); the synthetic high-resolution template is registered onto each,
 and the distance to the true (full-resolution, noise-free) ICT surface is measured by
 `facesketch register --truth`.
 
@@ -12,9 +12,10 @@ is run on the result and on the direct ICT import at about 6,000 vertices, for t
 "within 1.5x of the direct import" comparison.
 
 --args passes options to `register` (per scan) or `import scans` (with --train), e.g.
---args="--blend 40 --smooth-displacement 1". --ears gives the ear points too (the scans have ears).
+--args="--blend 40 --smooth-displacement 1". --mask leaves the ear points (obs_l, obs_r) out, as a
+face mask's points file would (the 6th session's check); --ears, the default, gives them.
 
-usage: tools/registration-check.py FACESKETCH ICT_DIR WORK [--faces N] [--noise MM] [--train] [--args "..."] [--ears]
+usage: tools/registration-check.py FACESKETCH ICT_DIR WORK [--faces N] [--noise MM] [--train] [--args "..."] [--mask]
 """
 import argparse, json, math, random, re, struct, subprocess, sys
 from pathlib import Path
@@ -54,7 +55,8 @@ def main():
     ap.add_argument("--noise", type=float, default=0.2)
     ap.add_argument("--train", action="store_true")
     ap.add_argument("--args", default="", help="extra options of register / import scans")
-    ap.add_argument("--ears", action="store_true", help="give the scans' ear points (obs_l, obs_r) too: scans with ears, not masks")
+    ap.add_argument("--ears", action="store_true", help="give the scans' ear points (obs_l, obs_r): the default")
+    ap.add_argument("--mask", action="store_true", help="leave the ear points out, as a face mask's points file would")
     a = ap.parse_args()
     a.work.mkdir(parents=True, exist_ok=True)
     run(a.facesketch, "synth", "-o", a.work / "template", "--identities", 20, "--resolution", "high")
@@ -75,7 +77,7 @@ def main():
         F = [f for f in F if min(math.dist(V[i], centre) for i in f) > 7]
         where = a.work / "scans-in" if a.train else a.work
         write_obj(where / (name + ".obj"), [[x + rng.gauss(0, a.noise) for x in v] for v in V], F)
-        points = {k: list(V[i]) for k, i in manifest["landmarks"].items() if a.ears or not k.startswith("obs")}
+        points = {k: list(V[i]) for k, i in manifest["landmarks"].items() if not a.mask or not k.startswith("obs")}
         (where / (name + ".points.json")).write_text(json.dumps(points))
         if a.train:
             continue
