@@ -136,7 +136,7 @@ bool Document::redo()
         // redo history is gone then); applying the action again gives the same state, since
         // reading and completion are deterministic.
         if (!editor_ || editorRevision_ != shapeRevisions_[applied_])
-            buildEditor();
+            reposeNeutral();
         if (!editor_->redo())
             editor_->apply(poseActions_[poseApplied_]);
         ++poseApplied_;
