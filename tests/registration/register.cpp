@@ -53,6 +53,18 @@ Distances distances(const Vertices& V, const std::vector<int>& rows, const Surfa
     return d;
 }
 
+// A coarse template head and a finer scan of another topology with a cheek bump the landmarks do
+// not see, the scan's surface for distances, and the template's face-region vertices.
+struct CheekScan {
+    static constexpr double cheek = 8.0;
+    Mesh templ = test::makeHead(3);
+    FeaturePoints templPoints = landmarkPositions(templ, test::headLandmarks(templ));
+    Mesh scan = test::makeHead(5, cheek);
+    FeaturePoints scanPoints = test::headPoints(cheek);
+    SurfaceQuery surface { scan };
+    std::vector<int> face = faceVertices(templ);
+};
+
 } // namespace
 
 TEST_CASE("registerScan: the template onto an affine copy of itself gives back that copy")
@@ -82,13 +94,13 @@ TEST_CASE("registerScan: the template onto an affine copy of itself gives back t
 
 TEST_CASE("registerScan: moves the approximation onto a scan of another topology, both routes")
 {
-    const Mesh templ = test::makeHead(3);
-    const FeaturePoints templPoints = landmarkPositions(templ, test::headLandmarks(templ));
-    const double cheek = 8.0; // a bump the landmarks do not see
-    const Mesh scan = test::makeHead(5, cheek);
-    const FeaturePoints scanPoints = test::headPoints(cheek);
-    const SurfaceQuery surface(scan);
-    const std::vector<int> face = faceVertices(templ);
+    const CheekScan c;
+    const Mesh& templ = c.templ;
+    const FeaturePoints& templPoints = c.templPoints;
+    const Mesh& scan = c.scan;
+    const FeaturePoints& scanPoints = c.scanPoints;
+    const SurfaceQuery& surface = c.surface;
+    const std::vector<int>& face = c.face;
     for (const auto method : { RegistrationMethod::DepthMaps, RegistrationMethod::Projection }) {
         RegistrationOptions options;
         options.method = method;
@@ -324,13 +336,13 @@ TEST_CASE("registerScan: a fin the rays graze (a scanning artefact under the jaw
 
 TEST_CASE("registerScan: a refinement pass refits the RBF on the first pass's scan vertices")
 {
-    const Mesh templ = test::makeHead(3);
-    const FeaturePoints templPoints = landmarkPositions(templ, test::headLandmarks(templ));
-    const double cheek = 8.0; // a bump the landmarks do not see
-    const Mesh scan = test::makeHead(5, cheek);
-    const FeaturePoints scanPoints = test::headPoints(cheek);
-    const SurfaceQuery surface(scan);
-    const std::vector<int> face = faceVertices(templ);
+    const CheekScan c;
+    const Mesh& templ = c.templ;
+    const FeaturePoints& templPoints = c.templPoints;
+    const Mesh& scan = c.scan;
+    const FeaturePoints& scanPoints = c.scanPoints;
+    const SurfaceQuery& surface = c.surface;
+    const std::vector<int>& face = c.face;
     RegistrationOptions options;
     options.mapWidth = options.mapHeight = 256;
     options.refinePasses = 0;
