@@ -9,7 +9,7 @@
 // three.js are served from this process on 127.0.0.1; the page posts its answer back.
 import { spawn } from 'node:child_process';
 import { createServer } from 'node:http';
-import { mkdtemp, readFile, rm } from 'node:fs/promises';
+import { mkdir, mkdtemp, readFile, rm } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -90,9 +90,14 @@ const server = createServer(async (req, res) => {
 await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
 const port = server.address().port;
 const profile = await mkdtemp(path.join(tmpdir(), 'facesketch-chromium-'));
+// Chromium puts its singleton socket folder (org.chromium.Chromium.*) in TMPDIR and, killed, never
+// removes it: pointing TMPDIR inside the profile lets the rm below take it too.
+const browserTmp = path.join(profile, 'tmp');
+await mkdir(browserTmp);
 const browser = spawn(chromium, ['--headless=new', '--no-sandbox', '--disable-gpu', '--no-first-run',
     '--disable-extensions', '--disable-background-networking', '--disable-dev-shm-usage', '--mute-audio',
-    `--user-data-dir=${profile}`, `http://127.0.0.1:${port}/`], { stdio: ['ignore', 'ignore', 'pipe'] });
+    `--user-data-dir=${profile}`, `http://127.0.0.1:${port}/`],
+    { stdio: ['ignore', 'ignore', 'pipe'], env: { ...process.env, TMPDIR: browserTmp } });
 const exited = new Promise((resolve) => browser.once('exit', resolve));
 exited.then((code) => resolveAnswer({ error: `chromium exited (code ${code}) before answering` }));
 let browserLog = '';
