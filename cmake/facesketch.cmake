@@ -16,6 +16,9 @@ function(facesketch_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE facesketch_test_main ${ARG_DEPS})
+  if(FACESKETCH_UNITY_TESTS)
+    set_target_properties(${name} PROPERTIES UNITY_BUILD ON)
+  endif()
   # --warn NoTests: a ctest entry whose name matches no test case fails instead of passing
   # with nothing run (a ';' in a test name once split two names and silently ran nothing).
   catch_discover_tests(${name}

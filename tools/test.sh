@@ -21,8 +21,9 @@ if [ "$mode" = sanitize ]; then
   dir=build-asan
   # A unity build (CMake joins the sources of each target in batches of 8): the sanitizer build
   # is CI's longest step, and most of a test file's compile time is the Catch2 and Eigen headers
-  # it shares with its neighbours (BENCHMARKS.md, "CI time"). The release build stays one file
-  # per compile, as developers build, so a file missing an include of its own still fails there.
+  # it shares with its neighbours (BENCHMARKS.md, "CI time"). The release build below joins only
+  # the test sources: the engine and the app stay one file per compile, as the README's main
+  # command builds them, so an engine or app file missing an include of its own still fails there.
   cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="$lines -O1" \
         -DFACESKETCH_SANITIZE=ON -DFACESKETCH_WERROR=ON -DCMAKE_UNITY_BUILD=ON
   # Mesa's drivers and the validation layer keep process-lifetime allocations that LeakSanitizer
@@ -33,7 +34,7 @@ if [ "$mode" = sanitize ]; then
 else
   dir=build
   cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 $lines -DNDEBUG" \
-        -DFACESKETCH_WERROR=ON
+        -DFACESKETCH_WERROR=ON -DFACESKETCH_UNITY_TESTS=ON
 fi
 built=$SECONDS
 cmake --build "$dir" -j"$jobs"
