@@ -647,13 +647,15 @@ void SceneRenderer::clear()
     clearOverlay();
 }
 
-void SceneRenderer::record(VkCommandBuffer cmd, std::uint32_t slot, const Camera& camera, VkExtent2D extent)
+void SceneRenderer::record(VkCommandBuffer cmd, std::uint32_t slot, const Camera& camera, VkExtent2D extent, float pixelScale)
 {
     auto& im = *impl_;
     if (slot >= im.slotCount)
         fail("SceneRenderer::record: slot ", slot, " of ", im.slotCount);
     if (extent.width == 0 || extent.height == 0)
         fail("SceneRenderer::record: empty extent ", extent.width, "x", extent.height);
+    if (!(pixelScale > 0 && pixelScale <= 1))
+        fail("SceneRenderer::record: pixel scale ", pixelScale, " must be in (0, 1]");
 
     // The slot's previous frame is done: what waited for it may go.
     for (auto it = im.retired.begin(); it != im.retired.end();) {
@@ -679,8 +681,8 @@ void SceneRenderer::record(VkCommandBuffer cmd, std::uint32_t slot, const Camera
     const glm::vec4 toLight(glm::normalize(glm::vec3(-camera.forward + 0.35 * up + 0.15 * right)), 0.0f);
     // Pixels (x right, y down) to clip space: the viewport's y flip puts clip +1 at row 0.
     glm::mat4 pixelsToClip(1.0f);
-    pixelsToClip[0][0] = 2.0f / float(extent.width);
-    pixelsToClip[1][1] = -2.0f / float(extent.height);
+    pixelsToClip[0][0] = 2.0f * pixelScale / float(extent.width);
+    pixelsToClip[1][1] = -2.0f * pixelScale / float(extent.height);
     pixelsToClip[3][0] = -1.0f;
     pixelsToClip[3][1] = 1.0f;
 
@@ -690,9 +692,10 @@ void SceneRenderer::record(VkCommandBuffer cmd, std::uint32_t slot, const Camera
         const Topology topology = topologyOf(item.kind);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, im.pipeline(topology, item.depthTest, item.mode, !item.opaque));
         if (topology == LineList)
-            vkCmdSetLineWidth(cmd, std::clamp(item.size, 1.0f, maxLineWidth));
+            vkCmdSetLineWidth(cmd, std::clamp(item.size * pixelScale, 1.0f, maxLineWidth));
         const bool screen = item.kind == Kind::ScreenPolyline;
-        DrawConstants constants { screen ? pixelsToClip : viewProjection, toLight, item.mode, topology == PointList ? item.size : 1.0f,
+        DrawConstants constants { screen ? pixelsToClip : viewProjection, toLight, item.mode,
+            topology == PointList ? std::max(item.size * pixelScale, std::min(item.size, 1.0f)) : 1.0f,
             topology == TriangleList || screen ? 0.0f : 2e-4f };
         vkCmdPushConstants(cmd, im.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(constants), &constants);
         const VkDeviceSize zero = 0;

@@ -118,7 +118,11 @@ public:
     /// the render pass of target()), with viewport and scissor covering `extent` pixels. Writes
     /// the changed items into the copies of `slot` first (host writes: no commands recorded
     /// outside the pass). `camera` maps world to clip space; its width/height are not used.
-    void record(VkCommandBuffer cmd, std::uint32_t slot, const Camera& camera, VkExtent2D extent);
+    /// `pixelScale` is the target's pixels per pixel of the caller's coordinates: below 1 when
+    /// the caller draws a reduced-resolution copy of its view (e.g. 0.5 while the view moves),
+    /// so that screen polylines (given in the caller's pixels) land where they belong and
+    /// line widths and point sizes shrink with the image (never below 1 pixel).
+    void record(VkCommandBuffer cmd, std::uint32_t slot, const Camera& camera, VkExtent2D extent, float pixelScale = 1.0f);
 
 private:
     struct Impl;
