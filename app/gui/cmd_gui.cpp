@@ -294,6 +294,7 @@ private:
     int idleFrames_ = 0;                 ///< frames in a row in which nothing changed
     std::optional<OrbitView> drawnView_; ///< the view of the last frame drawn
     bool reducedShown_ = false;          ///< the last frame drew the scene at motionScale
+    std::uint32_t reducedTarget_ = 0;    ///< scene_'s target for reduced frames (one sample)
 
     // Pose mode and the timeline.
     bool poseMode_ = false;
@@ -323,6 +324,10 @@ App::App(const GuiCommand& c)
     target.samples = window_.samples();
     target.renderPass = window_.renderPass();
     scene_ = std::make_unique<SceneRenderer>(window_.device(), target, gpu::framesInFlight);
+    RenderTargetFormat reduced = target;
+    reduced.samples = 1;
+    reduced.renderPass = window_.reducedRenderPass();
+    reducedTarget_ = scene_->addTarget(reduced);
     if (!c.sessionOut.empty())
         std::snprintf(sessionPath_, sizeof sessionPath_, "%s", c.sessionOut.c_str());
     if (!c.exportOut.empty())
@@ -1568,7 +1573,8 @@ void App::run()
         panels();
         if (doc_) {
             const VkExtent2D scene = window_.sceneExtent();
-            scene_->record(frame.cmd, frame.slot, orbitCamera(nav_->view()), scene, float(scene.width) / float(frame.extent.width));
+            scene_->record(frame.cmd, frame.slot, orbitCamera(nav_->view()), scene, float(scene.width) / float(frame.extent.width),
+                window_.reducedFrame() ? reducedTarget_ : 0);
             drawnView_ = nav_->view();
         }
         reducedShown_ = window_.reducedFrame();
@@ -1657,8 +1663,8 @@ void addGuiCommand(CLI::App& root)
         "Window size in pixels, WxH (default 1280x800)");
     cmd->add_option("--msaa", c->samples, "Samples per pixel, 1 or 4")->check(CLI::IsMember({ 1, 4 }))->capture_default_str();
     cmd->add_option("--motion-scale", c->motionScale,
-           "While the view moves (orbit, pan, zoom, presets, resizing) draw the face at this fraction of the window's resolution, "
-           "scaled up; full resolution as soon as the view rests (1: always full)")
+           "While the view moves (orbit, pan, zoom, presets, resizing) draw the face at this fraction of the window's resolution "
+           "without MSAA, scaled up; full resolution as soon as the view rests (1: always full)")
         ->check(CLI::Range(0.25, 1.0))
         ->capture_default_str();
     cmd->add_option("--autosave-seconds", c->autosaveSeconds, "Autosave interval")->check(CLI::PositiveNumber)->capture_default_str();

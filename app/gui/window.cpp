@@ -36,9 +36,8 @@ struct Window::Targets {
     gpu::Buffer readback;                      ///< screenshots
     VkExtent2D extent {};
     // The reduced-resolution scene (begin() with a scale below 1), made when first needed.
-    gpu::Image reducedColor; ///< MSAA colour (samples 4 only)
     gpu::Image reducedDepth;
-    gpu::Image reduced; ///< one sample per pixel: the resolve target (or the colour with samples 1)
+    gpu::Image reduced; ///< colour, one sample per pixel
     VkFramebuffer reducedFramebuffer = VK_NULL_HANDLE;
     VkExtent2D reducedExtent {};
 };
@@ -144,6 +143,15 @@ Window::Window(const WindowOptions& options)
         rp.dependencyCount = 1;
         rp.pDependencies = &dep;
         VK_CHECK(vkCreateRenderPass(device_.device, &rp, nullptr, &renderPass_));
+        // The reduced scene's pass: one sample per pixel, its colour stored for end()'s blit.
+        // Antialiasing a picture that is moving and scaled up costs more than it shows.
+        VkAttachmentDescription reduced[2] = { color, depth };
+        reduced[0].samples = reduced[1].samples = VK_SAMPLE_COUNT_1_BIT;
+        reduced[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        subpass.pResolveAttachments = nullptr;
+        rp.attachmentCount = 2;
+        rp.pAttachments = reduced;
+        VK_CHECK(vkCreateRenderPass(device_.device, &rp, nullptr, &reducedPass_));
 
         // ImGui's pass: the swapchain image as the scene left it (loaded), one sample per pixel
         // (its widgets are antialiased by their own geometry), presented after.
@@ -273,6 +281,9 @@ void Window::release()
     if (uiPass_)
         vkDestroyRenderPass(device_.device, uiPass_, nullptr);
     uiPass_ = VK_NULL_HANDLE;
+    if (reducedPass_)
+        vkDestroyRenderPass(device_.device, reducedPass_, nullptr);
+    reducedPass_ = VK_NULL_HANDLE;
     loop_.reset();
     if (device_.device)
         gpu::destroyDevice(device_);
@@ -332,7 +343,7 @@ void destroyReduced(gpu::Device& device, Window::Targets& t)
     if (t.reducedFramebuffer)
         vkDestroyFramebuffer(device.device, t.reducedFramebuffer, nullptr);
     t.reducedFramebuffer = VK_NULL_HANDLE;
-    for (gpu::Image* i : { &t.reducedColor, &t.reducedDepth, &t.reduced })
+    for (gpu::Image* i : { &t.reducedDepth, &t.reduced })
         if (i->image)
             gpu::destroyImage(device, *i);
     t.reducedExtent = {};
@@ -407,30 +418,20 @@ void Window::createReduced(VkExtent2D extent)
     if (t.reducedFramebuffer) {
         // Another size: the old images may still be used by a frame in flight.
         auto old = std::make_shared<Targets>();
-        std::swap(old->reducedColor, t.reducedColor);
         std::swap(old->reducedDepth, t.reducedDepth);
         std::swap(old->reduced, t.reduced);
         std::swap(old->reducedFramebuffer, t.reducedFramebuffer);
         loop_->defer([this, old] { destroyReduced(device_, *old); });
     }
-    const VkSampleCountFlagBits samples = samples_ == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT;
-    const VkFormat format = colorFormat();
-    t.reduced = gpu::createImage(device_, extent.width, extent.height, format,
+    t.reduced = gpu::createImage(device_, extent.width, extent.height, colorFormat(),
         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
-    if (samples_ == 4)
-        t.reducedColor = gpu::createImage(device_, extent.width, extent.height, format,
-            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT, VK_IMAGE_ASPECT_COLOR_BIT, samples);
-    t.reducedDepth = gpu::createImage(device_, extent.width, extent.height, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-        VK_IMAGE_ASPECT_DEPTH_BIT, samples);
-    std::vector<VkImageView> views;
-    if (samples_ == 4)
-        views = { t.reducedColor.view, t.reducedDepth.view, t.reduced.view };
-    else
-        views = { t.reduced.view, t.reducedDepth.view };
+    t.reducedDepth = gpu::createImage(
+        device_, extent.width, extent.height, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+    const VkImageView views[2] = { t.reduced.view, t.reducedDepth.view };
     auto info = gpu::makeStruct<VkFramebufferCreateInfo>(VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO);
-    info.renderPass = renderPass_;
-    info.attachmentCount = static_cast<std::uint32_t>(views.size());
-    info.pAttachments = views.data();
+    info.renderPass = reducedPass_;
+    info.attachmentCount = 2;
+    info.pAttachments = views;
     info.width = extent.width;
     info.height = extent.height;
     info.layers = 1;
@@ -476,10 +477,10 @@ bool Window::begin(gpu::Frame& frame, const float background[4], double sceneSca
         }
     }
     auto rp = gpu::makeStruct<VkRenderPassBeginInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO);
-    rp.renderPass = renderPass_;
+    rp.renderPass = reducedFrame_ ? reducedPass_ : renderPass_;
     rp.framebuffer = reducedFrame_ ? targets_->reducedFramebuffer : targets_->framebuffers[frame.imageIndex];
     rp.renderArea.extent = sceneExtent_;
-    rp.clearValueCount = samples_ == 4 ? 3 : 2;
+    rp.clearValueCount = samples_ == 4 && !reducedFrame_ ? 3 : 2;
     rp.pClearValues = clear;
     vkCmdBeginRenderPass(frame.cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
     return true;

@@ -10,9 +10,9 @@
 // the swapchain image (samples() = 4), or with samples 1 drawing into that image itself. Then
 // ImGui's, one sample per pixel, blending over the image the scene left (loaded) and presenting it.
 // While the view moves the app may draw the scene at a reduced resolution (begin()'s sceneScale):
-// the scene's pass then renders into a smaller image of its own (same pass, same pipelines), which
-// end() scales up over the swapchain image with a bilinear blit before ImGui's pass, so the
-// panels stay sharp. The MSAA, depth and reduced images are shared by the frames in flight; each
+// the scene then renders in reducedRenderPass() (one sample per pixel, no MSAA) into a smaller
+// image of its own, which end() scales up over the swapchain image with a bilinear blit before
+// ImGui's pass, so the panels stay sharp. The MSAA, depth and reduced images are shared by the frames in flight; each
 // pass's external dependency orders one frame's use after the last.
 
 #include "gpu/device.h"
@@ -56,6 +56,8 @@ public:
     GLFWwindow* glfw() const { return window_; }
     gpu::Device& device() { return device_; }
     VkRenderPass renderPass() const { return renderPass_; }
+    /// The scene's pass in reduced frames (reducedFrame()): colour and depth, one sample.
+    VkRenderPass reducedRenderPass() const { return reducedPass_; }
     VkFormat colorFormat() const;
     int samples() const { return samples_; }
     /// Whether begin() can draw the scene at a reduced resolution (the surface allows blits into
@@ -105,6 +107,7 @@ private:
     int samples_ = 4;
     VkRenderPass renderPass_ = VK_NULL_HANDLE;
     VkRenderPass uiPass_ = VK_NULL_HANDLE;
+    VkRenderPass reducedPass_ = VK_NULL_HANDLE;
     bool canReduce_ = false;
     bool reducedFrame_ = false;
     VkExtent2D sceneExtent_ {};
