@@ -241,6 +241,23 @@ TEST_CASE(
     REQUIRE(other.poseEditor()->face().V == smiled);
     REQUIRE(other.undo());
     REQUIRE(other.poseEditor()->keyframes().size() == 1);
+    // Opened again over this work (two actions undone), the open undoes to the work as it was
+    // posed, its undone actions redo, then the open again.
+    const Vertices workFace = other.poseEditor()->face().V;
+    const size_t workPoses = other.poseAppliedCount();
+    REQUIRE(other.open(file) == 0);
+    REQUIRE(other.poseEditor()->face().V == smiledWider);
+    REQUIRE(other.undoReopens());
+    REQUIRE(other.undo());
+    REQUIRE(other.poseAppliedCount() == workPoses);
+    REQUIRE(other.poseEditor()->face().V == workFace);
+    REQUIRE(other.redo());
+    REQUIRE(other.redo());
+    REQUIRE(other.poseEditor()->face().V == smiledWider);
+    REQUIRE(other.redoReopens());
+    REQUIRE(other.redo());
+    REQUIRE(other.poseEditor()->face().V == smiledWider);
+    REQUIRE(sketch::operator==(other.session(), doc.session()));
 
     // Export writes the posed face.
     doc.exportMesh(in.dir / "posed.ply");
