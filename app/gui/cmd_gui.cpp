@@ -71,6 +71,7 @@ struct GuiCommand {
     int benchFrames = 0;
     int width = 1280, height = 800;
     int samples = 4;
+    double motionScale = 0.5; ///< the scene's resolution while the view moves (1: always full)
     double autosaveSeconds = 30;
     bool restore = false;
     bool printGuides = false;
@@ -289,8 +290,11 @@ private:
     std::optional<sketch::Session> recovery_;
     fs::path sessionArg_;
     std::uint64_t readyFrames_ = 0;
-    bool inputSeen_ = false; ///< an input event arrived since the last frame
-    int idleFrames_ = 0;     ///< frames in a row in which nothing changed
+    bool inputSeen_ = false;             ///< an input event arrived since the last frame
+    int idleFrames_ = 0;                 ///< frames in a row in which nothing changed
+    std::optional<OrbitView> drawnView_; ///< the view of the last frame drawn
+    bool reducedShown_ = false;          ///< the last frame drew the scene at motionScale
+    std::uint32_t reducedTarget_ = 0;    ///< scene_'s target for reduced frames (one sample)
 
     // Pose mode and the timeline.
     bool poseMode_ = false;
@@ -320,6 +324,10 @@ App::App(const GuiCommand& c)
     target.samples = window_.samples();
     target.renderPass = window_.renderPass();
     scene_ = std::make_unique<SceneRenderer>(window_.device(), target, gpu::framesInFlight);
+    RenderTargetFormat reduced = target;
+    reduced.samples = 1;
+    reduced.renderPass = window_.reducedRenderPass();
+    reducedTarget_ = scene_->addTarget(reduced);
     if (!c.sessionOut.empty())
         std::snprintf(sessionPath_, sizeof sessionPath_, "%s", c.sessionOut.c_str());
     if (!c.exportOut.empty())
@@ -698,7 +706,22 @@ void App::applyStroke(const sketch::Stroke& stroke)
 
 void App::undo()
 {
-    if (doc_->undo()) {
+    const bool reopens = doc_->undoReopens();
+    bool undone = false;
+    try {
+        undone = doc_->undo();
+    } catch (const std::exception& e) {
+        say(std::string("not undone: ") + e.what());
+        return;
+    }
+    if (undone && reopens) {
+        say("undone the open: back to the work before it, " + std::to_string(doc_->appliedCount()) + " strokes, "
+            + std::to_string(doc_->poseAppliedCount()) + " pose actions in effect (Ctrl+Shift+Z opens it again)");
+        std::cout << "gui: undone the open, " << doc_->appliedCount() << " strokes in effect, " << doc_->poseAppliedCount()
+                  << " pose actions" << std::endl;
+        timelineShown_ = false;
+        faceChanged();
+    } else if (undone) {
         say("undone: " + std::to_string(doc_->appliedCount()) + " strokes, " + std::to_string(doc_->poseAppliedCount())
             + " pose actions in effect");
         std::cout << "gui: undone, " << doc_->appliedCount() << " strokes in effect, " << doc_->poseAppliedCount() << " pose actions"
@@ -1411,6 +1434,14 @@ double processCpuSeconds()
     return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) * 1e-9;
 }
 
+// The same view, field by field (a moved view differs in at least one).
+bool sameView(const OrbitView& a, const OrbitView& b)
+{
+    return a.target == b.target && a.angles.azimuthDeg == b.angles.azimuthDeg && a.angles.elevationDeg == b.angles.elevationDeg
+        && a.distance == b.distance && a.kind == b.kind && a.halfHeight == b.halfHeight && a.fovY == b.fovY && a.nearPlane == b.nearPlane
+        && a.farPlane == b.farPlane && a.width == b.width && a.height == b.height;
+}
+
 } // namespace
 
 void App::run()
@@ -1451,7 +1482,7 @@ void App::run()
         const double now = glfwGetTime();
         // What changed since the last frame (before this frame's work clears it).
         const bool busy = inputSeen_ || !doc_ || job_ || viewDirty_ || released_ || playing_ || now < flashUntil_ + 0.2
-            || (showOverlay_ && overlayStale_) || contoursStale_ || recovery_;
+            || (showOverlay_ && overlayStale_) || contoursStale_ || recovery_ || reducedShown_;
         inputSeen_ = false;
         idleFrames_ = busy ? 0 : idleFrames_ + 1;
 
@@ -1525,8 +1556,13 @@ void App::run()
                 || (c_.benchFrames > 0 && readyFrames_ + 1 >= static_cast<std::uint64_t>(c_.benchFrames)));
         capture = last && !c_.screenshot.empty() && !shotTaken;
 
+        // While the view moves (it differs from the last frame's) the scene is drawn at
+        // motionScale and scaled up; the first frame with the view at rest is full size again
+        // (reducedShown_ keeps the loop drawing until it is), as are captured frames.
+        const bool moving = doc_ && drawnView_ && !sameView(nav_->view(), *drawnView_);
+        const double sceneScale = moving && !capture ? c_.motionScale : 1.0;
         gpu::Frame frame;
-        if (!window_.begin(frame, background)) {
+        if (!window_.begin(frame, background, sceneScale)) {
             window_.skipFrame();
             if (quitting)
                 break;
@@ -1535,8 +1571,13 @@ void App::run()
             continue;
         }
         panels();
-        if (doc_)
-            scene_->record(frame.cmd, frame.slot, orbitCamera(nav_->view()), frame.extent);
+        if (doc_) {
+            const VkExtent2D scene = window_.sceneExtent();
+            scene_->record(frame.cmd, frame.slot, orbitCamera(nav_->view()), scene, float(scene.width) / float(frame.extent.width),
+                window_.reducedFrame() ? reducedTarget_ : 0);
+            drawnView_ = nav_->view();
+        }
+        reducedShown_ = window_.reducedFrame();
         window_.end(frame, capture);
 
         if (doc_) {
@@ -1621,6 +1662,11 @@ void addGuiCommand(CLI::App& root)
         "--size", [c](const CLI::results_t& r) { return std::sscanf(r[0].c_str(), "%dx%d", &c->width, &c->height) == 2; },
         "Window size in pixels, WxH (default 1280x800)");
     cmd->add_option("--msaa", c->samples, "Samples per pixel, 1 or 4")->check(CLI::IsMember({ 1, 4 }))->capture_default_str();
+    cmd->add_option("--motion-scale", c->motionScale,
+           "While the view moves (orbit, pan, zoom, presets, resizing) draw the face at this fraction of the window's resolution "
+           "without MSAA, scaled up; full resolution as soon as the view rests (1: always full)")
+        ->check(CLI::Range(0.25, 1.0))
+        ->capture_default_str();
     cmd->add_option("--autosave-seconds", c->autosaveSeconds, "Autosave interval")->check(CLI::PositiveNumber)->capture_default_str();
     cmd->add_flag("--restore", c->restore, "Restore the recovery file without asking");
     cmd->add_flag("--overlay", c->overlay, "Start with the sketchability overlay on");

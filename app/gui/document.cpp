@@ -82,6 +82,7 @@ sketch::ReplayOutcome Document::addStroke(const sketch::StrokeAction& action)
 
 void Document::dropRedo()
 {
+    reopen_.clear();
     strokes_.resize(applied_);
     poseActions_.resize(poseApplied_);
     history_.resize(done());
@@ -101,9 +102,60 @@ void Document::reposeNeutral()
     }
 }
 
+Document::Snapshot Document::capture()
+{
+    Snapshot s;
+    s.strokes = strokes_;
+    s.applied = applied_;
+    s.poseActions = poseActions_;
+    s.poseApplied = poseApplied_;
+    s.history = history_;
+    s.tension = tension_;
+    s.revisions = revisions_;
+    s.shapeRevisions = shapeRevisions_;
+    s.revision = revision_;
+    s.openBase = openBase_;
+    s.editor = std::move(editor_);
+    s.editorRevision = editorRevision_;
+    return s;
+}
+
+void Document::restore(Snapshot&& s)
+{
+    // Reading is deterministic: the strokes replayed from no stroke give the same faces.
+    while (replayer_.undo()) { }
+    for (size_t i = 0; i < s.strokes.size(); ++i)
+        if (replayer_.apply(s.strokes[i].action).kind != sketch::ReplayOutcome::Kind::Applied)
+            fail("gui: stroke ", i, " of the document to restore no longer applies");
+    for (size_t i = s.applied; i < s.strokes.size(); ++i)
+        replayer_.undo();
+    strokes_ = std::move(s.strokes);
+    applied_ = s.applied;
+    poseActions_ = std::move(s.poseActions);
+    poseApplied_ = s.poseApplied;
+    history_ = std::move(s.history);
+    tension_ = s.tension;
+    revisions_ = std::move(s.revisions);
+    shapeRevisions_ = std::move(s.shapeRevisions);
+    revision_ = s.revision;
+    openBase_ = s.openBase;
+    editor_ = std::move(s.editor);
+    editorRevision_ = s.editorRevision;
+    if (poseApplied_ > 0 && (!editor_ || editorRevision_ != shapeRevisions_[applied_]))
+        reposeNeutral();
+}
+
 bool Document::undo()
 {
-    if (done() == 0)
+    if (undoReopens()) {
+        Snapshot opened = capture();
+        Snapshot previous = std::move(before_.back());
+        before_.pop_back();
+        restore(std::move(previous));
+        reopen_.push_back(std::move(opened));
+        return true;
+    }
+    if (done() <= openBase_)
         return false;
     if (history_[done() - 1] == Step::Pose) {
         if (!editor_ || !editor_->undo())
@@ -123,6 +175,14 @@ bool Document::undo()
 
 bool Document::redo()
 {
+    if (redoReopens()) {
+        Snapshot previous = capture();
+        Snapshot opened = std::move(reopen_.back());
+        reopen_.pop_back();
+        restore(std::move(opened));
+        before_.push_back(std::move(previous));
+        return true;
+    }
     if (done() == history_.size())
         return false;
     if (history_[done()] == Step::Shape) {
@@ -232,16 +292,12 @@ int Document::load(const sketch::Session& session, const std::filesystem::path& 
             where, "` to open it with its own model)");
     if (!samePath(dataset, dataset_))
         fail(where, ": dataset: drawn against ", dataset.string(), ", but the app has ", dataset_.string(), " open");
-    // Back to no stroke, then the session's strokes; on an error, the strokes that were in
-    // effect are replayed again (reading is deterministic, so the face is the same).
+    // Back to no stroke, then the session's strokes; on an error, the document before is
+    // restored (its strokes replayed: reading is deterministic, so the face is the same).
     if (!session.poseActions.empty() && !poseModel_)
         fail(where, ": ", session.poseActions.size(), " pose actions, but the app has no pose model (start it with --poses POSES.model)");
-    const std::vector<DocumentStroke> before(strokes_.begin(), strokes_.begin() + static_cast<long>(applied_));
-    std::unique_ptr<pose::PoseEditor> editorBefore = std::move(editor_);
-    const std::uint64_t editorRevisionBefore = editorRevision_;
-    const std::vector<std::uint64_t> revisionsBefore = revisions_;
+    Snapshot previous = capture();
     while (replayer_.undo()) { }
-    const std::vector<std::uint64_t> shapeRevisionsBefore = shapeRevisions_;
     std::vector<DocumentStroke> loaded;
     // keptBefore[k]: how many of the first k strokes of the file were applied (the rest were
     // dropped), so each pose action keeps its place among the strokes that remain.
@@ -275,20 +331,16 @@ int Document::load(const sketch::Session& session, const std::filesystem::path& 
             }
         }
     } catch (...) {
-        while (replayer_.undo()) { }
-        for (const DocumentStroke& s : before)
-            replayer_.apply(s.action);
-        strokes_ = before;
-        applied_ = before.size();
-        editor_ = std::move(editorBefore);
-        editorRevision_ = editorRevisionBefore;
-        revisions_ = revisionsBefore;
-        shapeRevisions_ = shapeRevisionsBefore;
-        dropRedo(); // the replayer's undone strokes are gone
+        restore(std::move(previous)); // with its undone actions, which redo as before
         throw;
     }
-    // Opening replaces the document: the loaded strokes and pose actions become its history,
-    // in the file's order, and undo goes back through them (not to the state before opening).
+    // Opening replaces the document: the loaded strokes and pose actions become its history, in
+    // the file's order. Over work, the document before is kept for undo and the loaded actions
+    // are the base undo stops at; into an empty document they undo one by one.
+    const bool overWork = !previous.history.empty() || !before_.empty();
+    if (overWork)
+        before_.push_back(std::move(previous));
+    reopen_.clear();
     strokes_ = std::move(loaded);
     applied_ = strokes_.size();
     poseActions_ = std::move(poses);
@@ -305,6 +357,7 @@ int Document::load(const sketch::Session& session, const std::filesystem::path& 
     for (size_t i = 0; i < history_.size(); ++i)
         revisions_.push_back(nextRevision_++);
     revision_ = revisions_.back();
+    openBase_ = overWork ? history_.size() : 0;
     return dropped;
 }
 

@@ -6,8 +6,12 @@
 //
 // Every stroke and pose action can be undone and redone; undo and redo restore the tracking
 // model's stored state, so the face after undo is bit-identical to the face before the undone
-// action. Opening a session replaces the document (its strokes then undo one by one); the state
-// before the open is not offered by undo.
+// action. Opening a session over work (a document with any history, or itself opened over work)
+// is one action: undo right after it brings back the document as it was before the open, with
+// its own undo and redo history, and redo opens the session again; the opened session's own
+// actions are its content then, not undone one by one. Opened into an empty document (nothing to
+// bring back, e.g. the app started with a session), its actions undo one by one in the file's
+// order. Undoing or redoing an open replays the other document's strokes (tens of ms a stroke).
 //
 // Posing (issue 13, thesis 5.3-5.5). With a pose model (enablePosing), pose actions (pose strokes,
 // keyframes, clears) go through pose::PoseEditor, the code path of `facesketch pose` and
@@ -54,12 +58,16 @@ public:
     /// forgot them).
     sketch::ReplayOutcome addStroke(const sketch::StrokeAction& action);
 
-    /// Undoes the last action in effect; false (nothing changed) if there is none.
+    /// Undoes the last action in effect (or the open that replaced earlier work, see above);
+    /// false (nothing changed) if there is none.
     bool undo();
-    /// Redoes the first undone action; false if there is none.
+    /// Redoes the first undone action (or an undone open); false if there is none.
     bool redo();
-    bool canUndo() const { return done() > 0; }
-    bool canRedo() const { return done() < history_.size(); }
+    bool canUndo() const { return done() > openBase_ || undoReopens(); }
+    bool canRedo() const { return done() < history_.size() || !reopen_.empty(); }
+    /// Whether undo() would go back to the document before an open (and redo() open it again).
+    bool undoReopens() const { return !before_.empty() && done() == openBase_; }
+    bool redoReopens() const { return done() == history_.size() && !reopen_.empty(); }
 
     /// Allows pose actions: `model` (kept by reference, keep it alive; `path` is written into
     /// saved sessions as `poses`) poses the mesh `neutral()` returns for the current shape face
@@ -108,7 +116,8 @@ public:
     /// `face` file is not read). Throws Error naming the file, before anything changes, if it
     /// cannot be read, was drawn against another model or dataset, or has pose actions that the
     /// app cannot replay (no pose model, a stroke that hits nothing); returns how many strokes
-    /// were dropped.
+    /// were dropped. Undoable as one action when it replaces work (see above); forgets an undone
+    /// open.
     int open(const std::filesystem::path& path);
     /// open() from a session in memory; `where` names it in errors.
     int load(const sketch::Session& session, const std::filesystem::path& sessionFile, const std::string& where);
@@ -129,6 +138,25 @@ public:
 
 private:
     enum class Step { Shape, Pose };
+    // One whole document: its history, what is in effect, its revisions and its pose editor.
+    struct Snapshot {
+        std::vector<DocumentStroke> strokes;
+        size_t applied = 0;
+        std::vector<sketch::PoseAction> poseActions;
+        size_t poseApplied = 0;
+        std::vector<Step> history;
+        double tension = 0;
+        std::vector<std::uint64_t> revisions, shapeRevisions;
+        std::uint64_t revision = 0;
+        size_t openBase = 0;
+        std::unique_ptr<pose::PoseEditor> editor;
+        std::uint64_t editorRevision = 0;
+    };
+    // The document as it is (its editor is moved into the snapshot).
+    Snapshot capture();
+    // Makes `s` the document: the replayer replays its strokes (and undoes its undone ones, so
+    // that they redo), its editor is kept if it is of the restored neutral, else rebuilt.
+    void restore(Snapshot&& s);
     size_t done() const { return applied_ + poseApplied_; }
     void buildEditor();
     // After the neutral changed (a shape stroke applied or undone while posed): a new editor for
@@ -161,6 +189,12 @@ private:
     std::vector<std::uint64_t> revisions_ { 0 };
     std::vector<std::uint64_t> shapeRevisions_ { 0 };
     std::uint64_t nextRevision_ = 1;
+    // Opens over work: the documents they replaced (last: the latest), the opened documents
+    // undone (for redo), and how many steps of history_ came with the open (undo stops there
+    // and undoes the open instead; 0 with nothing before).
+    std::vector<Snapshot> before_;
+    std::vector<Snapshot> reopen_;
+    size_t openBase_ = 0;
 };
 
 /// Where the app autosaves: $FACESKETCH_STATE_DIR, else $XDG_STATE_HOME/facesketch, else

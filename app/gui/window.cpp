@@ -10,6 +10,8 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_vulkan.h>
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace facesketch::gui {
@@ -29,9 +31,15 @@ void checkImgui(VkResult r)
 struct Window::Targets {
     gpu::Image color; ///< MSAA colour (samples 4 only)
     gpu::Image depth;
-    std::vector<VkFramebuffer> framebuffers; ///< per swapchain image
-    gpu::Buffer readback;                    ///< screenshots
+    std::vector<VkFramebuffer> framebuffers;   ///< the scene's pass, per swapchain image
+    std::vector<VkFramebuffer> uiFramebuffers; ///< ImGui's pass, per swapchain image
+    gpu::Buffer readback;                      ///< screenshots
     VkExtent2D extent {};
+    // The reduced-resolution scene (begin() with a scale below 1), made when first needed.
+    gpu::Image reducedDepth;
+    gpu::Image reduced; ///< colour, one sample per pixel
+    VkFramebuffer reducedFramebuffer = VK_NULL_HANDLE;
+    VkExtent2D reducedExtent {};
 };
 
 Window::Window(const WindowOptions& options)
@@ -65,9 +73,23 @@ Window::Window(const WindowOptions& options)
         device_ = gpu::createDevice(instance_, gpu::choosePhysicalDevice(instance_, surface_), lo);
         int w = 0, h = 0;
         glfwGetFramebufferSize(window_, &w, &h);
-        loop_ = std::make_unique<gpu::FrameLoop>(device_, surface_, VkExtent2D { std::uint32_t(w), std::uint32_t(h) });
+        // Scaling a reduced scene up into the swapchain image needs it as a blit destination and
+        // linear filtering of its format (lavapipe has both; without them every frame is full size).
+        VkSurfaceCapabilitiesKHR caps {};
+        VK_CHECK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(device_.physical, surface_, &caps));
+        gpu::SwapchainOptions so;
+        if (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT)
+            so.extraUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+        loop_ = std::make_unique<gpu::FrameLoop>(device_, surface_, VkExtent2D { std::uint32_t(w), std::uint32_t(h) }, so);
+        VkFormatProperties fp {};
+        vkGetPhysicalDeviceFormatProperties(device_.physical, colorFormat(), &fp);
+        const VkFormatFeatureFlags blit
+            = VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+        canReduce_ = so.extraUsage != 0 && (fp.optimalTilingFeatures & blit) == blit;
 
-        // One subpass: colour (MSAA, resolved into the swapchain image, or that image itself) and depth.
+        // The scene's pass: colour (MSAA resolved into a one-sample image, or that image itself)
+        // and depth. The one-sample image is the swapchain image, or while the view moves the
+        // reduced-resolution target that end() scales up into it (same pass, other framebuffer).
         const VkSampleCountFlagBits samples = samples_ == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT;
         std::vector<VkAttachmentDescription> att;
         VkAttachmentDescription color {};
@@ -78,7 +100,7 @@ Window::Window(const WindowOptions& options)
         color.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
         color.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
         color.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-        color.finalLayout = samples_ == 4 ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+        color.finalLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
         att.push_back(color);
         VkAttachmentDescription depth = color;
         depth.format = kDepthFormat;
@@ -90,52 +112,73 @@ Window::Window(const WindowOptions& options)
             resolve.samples = VK_SAMPLE_COUNT_1_BIT;
             resolve.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
             resolve.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-            resolve.finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
             att.push_back(resolve);
         }
         VkAttachmentReference colorRef { 0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL };
         VkAttachmentReference depthRef { 1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL };
         VkAttachmentReference resolveRef { 2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL };
-        VkSubpassDescription subpasses[2] {};
-        VkSubpassDescription& subpass = subpasses[0];
+        VkSubpassDescription subpass {};
         subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
         subpass.colorAttachmentCount = 1;
         subpass.pColorAttachments = &colorRef;
         subpass.pDepthStencilAttachment = &depthRef;
         subpass.pResolveAttachments = samples_ == 4 ? &resolveRef : nullptr;
-        // With MSAA, ImGui draws in a second subpass straight into the resolved swapchain image:
-        // its widgets are antialiased by their own geometry, and blending them into one sample
-        // per pixel instead of four costs a software rasteriser a quarter of the stores.
-        subpasses[1].pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-        subpasses[1].colorAttachmentCount = 1;
-        subpasses[1].pColorAttachments = &resolveRef;
-        // The previous frame's use of the shared MSAA and depth images (and the acquire
-        // semaphore's wait at colour output) come before this frame's.
+        // The previous frame's use of the shared MSAA, depth and reduced images (its writes, and
+        // end()'s blit reading the reduced image) and the acquire semaphore's wait at colour
+        // output come before this frame's writes.
         VkSubpassDependency dep {};
         dep.srcSubpass = VK_SUBPASS_EXTERNAL;
         dep.dstSubpass = 0;
-        dep.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+        dep.srcStageMask
+            = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
         dep.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
         dep.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT;
         dep.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_COLOR_ATTACHMENT_READ_BIT
             | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
-        // The scene's resolve writes come before ImGui's blending reads and writes.
-        VkSubpassDependency deps[2] = { dep, {} };
-        deps[1].srcSubpass = 0;
-        deps[1].dstSubpass = 1;
-        deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-        deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-        deps[1].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-        deps[1].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-        deps[1].dependencyFlags = VK_DEPENDENCY_BY_REGION_BIT;
         auto rp = gpu::makeStruct<VkRenderPassCreateInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO);
         rp.attachmentCount = static_cast<std::uint32_t>(att.size());
         rp.pAttachments = att.data();
-        rp.subpassCount = imguiSubpass() + 1;
-        rp.pSubpasses = subpasses;
-        rp.dependencyCount = imguiSubpass() + 1;
-        rp.pDependencies = deps;
+        rp.subpassCount = 1;
+        rp.pSubpasses = &subpass;
+        rp.dependencyCount = 1;
+        rp.pDependencies = &dep;
         VK_CHECK(vkCreateRenderPass(device_.device, &rp, nullptr, &renderPass_));
+        // The reduced scene's pass: one sample per pixel, its colour stored for end()'s blit.
+        // Antialiasing a picture that is moving and scaled up costs more than it shows.
+        VkAttachmentDescription reduced[2] = { color, depth };
+        reduced[0].samples = reduced[1].samples = VK_SAMPLE_COUNT_1_BIT;
+        reduced[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        subpass.pResolveAttachments = nullptr;
+        rp.attachmentCount = 2;
+        rp.pAttachments = reduced;
+        VK_CHECK(vkCreateRenderPass(device_.device, &rp, nullptr, &reducedPass_));
+
+        // ImGui's pass: the swapchain image as the scene left it (loaded), one sample per pixel
+        // (its widgets are antialiased by their own geometry), presented after.
+        VkAttachmentDescription ui = color;
+        ui.samples = VK_SAMPLE_COUNT_1_BIT;
+        ui.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+        ui.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        ui.initialLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        ui.finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+        VkAttachmentReference uiRef { 0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL };
+        VkSubpassDescription uiSubpass {};
+        uiSubpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+        uiSubpass.colorAttachmentCount = 1;
+        uiSubpass.pColorAttachments = &uiRef;
+        // The scene's resolve or end()'s blit into the image come before ImGui's blending.
+        VkSubpassDependency uiDep {};
+        uiDep.srcSubpass = VK_SUBPASS_EXTERNAL;
+        uiDep.dstSubpass = 0;
+        uiDep.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+        uiDep.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+        uiDep.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+        uiDep.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+        rp.attachmentCount = 1;
+        rp.pAttachments = &ui;
+        rp.pSubpasses = &uiSubpass;
+        rp.pDependencies = &uiDep;
+        VK_CHECK(vkCreateRenderPass(device_.device, &rp, nullptr, &uiPass_));
 
         // ImGui, scaled for the display.
         IMGUI_CHECKVERSION();
@@ -192,14 +235,14 @@ Window::Window(const WindowOptions& options)
         info.QueueFamily = device_.queueFamily;
         info.Queue = device_.queue;
         info.DescriptorPool = imguiPool_;
-        info.Subpass = imguiSubpass();
+        info.Subpass = 0;
         const auto images = static_cast<std::uint32_t>(std::max<size_t>(loop_->swapchain().images.size(), 2));
         info.MinImageCount = 2;
         // ImGui keeps a ring of vertex buffers this long; at least the frames in flight.
         info.ImageCount = std::max(images, gpu::framesInFlight);
-        info.MSAASamples = imguiSubpass() == 1 ? VK_SAMPLE_COUNT_1_BIT : samples;
+        info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
         info.CheckVkResultFn = checkImgui;
-        imguiVulkan_ = ImGui_ImplVulkan_Init(&info, renderPass_);
+        imguiVulkan_ = ImGui_ImplVulkan_Init(&info, uiPass_);
         gpu::submitAndWait(device_, [](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
         ImGui_ImplVulkan_DestroyFontUploadObjects();
     } catch (...) {
@@ -235,6 +278,12 @@ void Window::release()
     if (renderPass_)
         vkDestroyRenderPass(device_.device, renderPass_, nullptr);
     renderPass_ = VK_NULL_HANDLE;
+    if (uiPass_)
+        vkDestroyRenderPass(device_.device, uiPass_, nullptr);
+    uiPass_ = VK_NULL_HANDLE;
+    if (reducedPass_)
+        vkDestroyRenderPass(device_.device, reducedPass_, nullptr);
+    reducedPass_ = VK_NULL_HANDLE;
     loop_.reset();
     if (device_.device)
         gpu::destroyDevice(device_);
@@ -289,9 +338,23 @@ void Window::requestClose()
 
 namespace {
 
+void destroyReduced(gpu::Device& device, Window::Targets& t)
+{
+    if (t.reducedFramebuffer)
+        vkDestroyFramebuffer(device.device, t.reducedFramebuffer, nullptr);
+    t.reducedFramebuffer = VK_NULL_HANDLE;
+    for (gpu::Image* i : { &t.reducedDepth, &t.reduced })
+        if (i->image)
+            gpu::destroyImage(device, *i);
+    t.reducedExtent = {};
+}
+
 void destroy(gpu::Device& device, Window::Targets& t)
 {
+    destroyReduced(device, t);
     for (VkFramebuffer f : t.framebuffers)
+        vkDestroyFramebuffer(device.device, f, nullptr);
+    for (VkFramebuffer f : t.uiFramebuffers)
         vkDestroyFramebuffer(device.device, f, nullptr);
     if (t.color.image)
         gpu::destroyImage(device, t.color);
@@ -337,6 +400,11 @@ void Window::createTargets()
         VkFramebuffer fb = VK_NULL_HANDLE;
         VK_CHECK(vkCreateFramebuffer(device_.device, &info, nullptr, &fb));
         t->framebuffers.push_back(fb);
+        info.renderPass = uiPass_;
+        info.attachmentCount = 1;
+        info.pAttachments = &view;
+        VK_CHECK(vkCreateFramebuffer(device_.device, &info, nullptr, &fb));
+        t->uiFramebuffers.push_back(fb);
     }
     if (sc.usage & VK_IMAGE_USAGE_TRANSFER_SRC_BIT)
         t->readback = gpu::createBuffer(device_, VkDeviceSize(sc.extent.width) * sc.extent.height * 4, 0, gpu::MemoryUse::Readback);
@@ -344,8 +412,37 @@ void Window::createTargets()
     targetsFor_ = sc.swapchain;
 }
 
-bool Window::begin(gpu::Frame& frame, const float background[4])
+void Window::createReduced(VkExtent2D extent)
 {
+    Targets& t = *targets_;
+    if (t.reducedFramebuffer) {
+        // Another size: the old images may still be used by a frame in flight.
+        auto old = std::make_shared<Targets>();
+        std::swap(old->reducedDepth, t.reducedDepth);
+        std::swap(old->reduced, t.reduced);
+        std::swap(old->reducedFramebuffer, t.reducedFramebuffer);
+        loop_->defer([this, old] { destroyReduced(device_, *old); });
+    }
+    t.reduced = gpu::createImage(device_, extent.width, extent.height, colorFormat(),
+        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    t.reducedDepth = gpu::createImage(
+        device_, extent.width, extent.height, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+    const VkImageView views[2] = { t.reduced.view, t.reducedDepth.view };
+    auto info = gpu::makeStruct<VkFramebufferCreateInfo>(VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO);
+    info.renderPass = reducedPass_;
+    info.attachmentCount = 2;
+    info.pAttachments = views;
+    info.width = extent.width;
+    info.height = extent.height;
+    info.layers = 1;
+    VK_CHECK(vkCreateFramebuffer(device_.device, &info, nullptr, &t.reducedFramebuffer));
+    t.reducedExtent = extent;
+}
+
+bool Window::begin(gpu::Frame& frame, const float background[4], double sceneScale)
+{
+    if (!(sceneScale > 0 && sceneScale <= 1))
+        fail("gui: the scene's scale must be in (0, 1], got ", sceneScale);
     ImGui_ImplVulkan_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
@@ -367,11 +464,23 @@ bool Window::begin(gpu::Frame& frame, const float background[4])
         clear[0].color.float32[i] = background[i];
     clear[1].depthStencil = { 1.0f, 0 };
     clear[2] = clear[0];
+    sceneExtent_ = frame.extent;
+    reducedFrame_ = false;
+    if (sceneScale < 1 && canReduce_) {
+        const VkExtent2D e { std::max(1u, std::uint32_t(std::lround(frame.extent.width * sceneScale))),
+            std::max(1u, std::uint32_t(std::lround(frame.extent.height * sceneScale))) };
+        if (e.width < frame.extent.width && e.height < frame.extent.height) {
+            if (e.width != targets_->reducedExtent.width || e.height != targets_->reducedExtent.height)
+                createReduced(e);
+            sceneExtent_ = e;
+            reducedFrame_ = true;
+        }
+    }
     auto rp = gpu::makeStruct<VkRenderPassBeginInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO);
-    rp.renderPass = renderPass_;
-    rp.framebuffer = targets_->framebuffers[frame.imageIndex];
-    rp.renderArea.extent = frame.extent;
-    rp.clearValueCount = samples_ == 4 ? 3 : 2;
+    rp.renderPass = reducedFrame_ ? reducedPass_ : renderPass_;
+    rp.framebuffer = reducedFrame_ ? targets_->reducedFramebuffer : targets_->framebuffers[frame.imageIndex];
+    rp.renderArea.extent = sceneExtent_;
+    rp.clearValueCount = samples_ == 4 && !reducedFrame_ ? 3 : 2;
     rp.pClearValues = clear;
     vkCmdBeginRenderPass(frame.cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
     return true;
@@ -388,8 +497,33 @@ void Window::end(gpu::Frame& frame, bool capture)
 {
     ImGui::Render();
     imguiFrame_ = false;
-    if (imguiSubpass() == 1)
-        vkCmdNextSubpass(frame.cmd, VK_SUBPASS_CONTENTS_INLINE);
+    vkCmdEndRenderPass(frame.cmd);
+    if (reducedFrame_) {
+        // The reduced scene, scaled up (bilinear) over the whole swapchain image.
+        const VkImage reduced = targets_->reduced.image;
+        gpu::imageBarrier(frame.cmd, reduced, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+            VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+            VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+        // From colour output, where the acquire semaphore is waited for: the blit waits for it too.
+        gpu::imageBarrier(frame.cmd, frame.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+            VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+            VK_ACCESS_TRANSFER_WRITE_BIT);
+        VkImageBlit region {};
+        region.srcSubresource = { VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1 };
+        region.srcOffsets[1] = { std::int32_t(sceneExtent_.width), std::int32_t(sceneExtent_.height), 1 };
+        region.dstSubresource = region.srcSubresource;
+        region.dstOffsets[1] = { std::int32_t(frame.extent.width), std::int32_t(frame.extent.height), 1 };
+        vkCmdBlitImage(frame.cmd, reduced, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, frame.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+            &region, VK_FILTER_LINEAR);
+        gpu::imageBarrier(frame.cmd, frame.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+            VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+            VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+    }
+    auto rp = gpu::makeStruct<VkRenderPassBeginInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO);
+    rp.renderPass = uiPass_;
+    rp.framebuffer = targets_->uiFramebuffers[frame.imageIndex];
+    rp.renderArea.extent = frame.extent;
+    vkCmdBeginRenderPass(frame.cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
     ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), frame.cmd);
     vkCmdEndRenderPass(frame.cmd);
     captured_ = false;

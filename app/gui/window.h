@@ -6,10 +6,14 @@
 // framebuffer pixels; contentScale() scales the ImGui style and fonts and converts GLFW's
 // cursor positions (screen coordinates) to pixels.
 //
-// Render pass: 4x MSAA colour and depth resolved into the swapchain image (samples() = 4), then a
-// second subpass where ImGui draws into that image (one sample per pixel); or, with samples 1,
-// one subpass drawing into the swapchain image itself. The MSAA and depth images are shared by the
-// frames in flight; the pass's external dependency orders one frame's use after the last.
+// Two render passes per frame. The scene's (renderPass()): 4x MSAA colour and depth resolved into
+// the swapchain image (samples() = 4), or with samples 1 drawing into that image itself. Then
+// ImGui's, one sample per pixel, blending over the image the scene left (loaded) and presenting it.
+// While the view moves the app may draw the scene at a reduced resolution (begin()'s sceneScale):
+// the scene then renders in reducedRenderPass() (one sample per pixel, no MSAA) into a smaller
+// image of its own, which end() scales up over the swapchain image with a bilinear blit before
+// ImGui's pass, so the panels stay sharp. The MSAA, depth and reduced images are shared by the frames in flight; each
+// pass's external dependency orders one frame's use after the last.
 
 #include "gpu/device.h"
 #include "gpu/swapchain.h"
@@ -52,11 +56,13 @@ public:
     GLFWwindow* glfw() const { return window_; }
     gpu::Device& device() { return device_; }
     VkRenderPass renderPass() const { return renderPass_; }
+    /// The scene's pass in reduced frames (reducedFrame()): colour and depth, one sample.
+    VkRenderPass reducedRenderPass() const { return reducedPass_; }
     VkFormat colorFormat() const;
     int samples() const { return samples_; }
-    /// The render pass's subpass ImGui draws in: 1 with MSAA (into the resolved image, one
-    /// sample per pixel), 0 without. The scene draws in subpass 0.
-    std::uint32_t imguiSubpass() const { return samples_ == 4 ? 1 : 0; }
+    /// Whether begin() can draw the scene at a reduced resolution (the surface allows blits into
+    /// its images and the format linear filtering); when not, every frame is full size.
+    bool canReduce() const { return canReduce_; }
     /// Framebuffer pixels per screen coordinate (1 on a normal display, 2 on a 2x HiDPI one).
     double contentScale() const;
     bool shouldClose() const;
@@ -66,12 +72,18 @@ public:
     void requestClose();
 
     /// Starts a frame: acquires an image (false when minimised or out of date: skip the
-    /// frame), starts ImGui's frame and begins the render pass cleared to `background`.
-    /// Between begin and end the caller records its draws into frame.cmd and builds its ImGui
-    /// windows.
-    bool begin(gpu::Frame& frame, const float background[4]);
-    /// Renders ImGui, ends the pass, optionally copies the image for screenshot(), submits and
-    /// presents.
+    /// frame), starts ImGui's frame and begins the scene's pass cleared to `background`, at
+    /// `sceneScale` (in (0, 1]) times the window's size in each direction (rounded; full size
+    /// when 1, when canReduce() is false, or when the scaled size is not smaller). Between begin
+    /// and end the caller records its scene into frame.cmd with sceneExtent() as its viewport
+    /// and builds its ImGui windows (drawn at full size by end()).
+    bool begin(gpu::Frame& frame, const float background[4], double sceneScale = 1.0);
+    /// The scene pass's size in pixels for the frame begun (frame.extent unless reduced).
+    VkExtent2D sceneExtent() const { return sceneExtent_; }
+    /// Whether the frame begun draws its scene at a reduced resolution.
+    bool reducedFrame() const { return reducedFrame_; }
+    /// Ends the scene's pass (scaling a reduced scene up into the swapchain image), draws ImGui
+    /// in its pass, optionally copies the image for screenshot(), submits and presents.
     void end(gpu::Frame& frame, bool capture);
     /// Ends ImGui's frame without drawing it (when begin() returned false).
     void skipFrame();
@@ -84,6 +96,7 @@ public:
 private:
     void release();
     void createTargets();
+    void createReduced(VkExtent2D extent);
     void destroyTargets();
     GLFWwindow* window_ = nullptr;
     WindowEvents events_;
@@ -93,6 +106,11 @@ private:
     std::unique_ptr<gpu::FrameLoop> loop_;
     int samples_ = 4;
     VkRenderPass renderPass_ = VK_NULL_HANDLE;
+    VkRenderPass uiPass_ = VK_NULL_HANDLE;
+    VkRenderPass reducedPass_ = VK_NULL_HANDLE;
+    bool canReduce_ = false;
+    bool reducedFrame_ = false;
+    VkExtent2D sceneExtent_ {};
     VkDescriptorPool imguiPool_ = VK_NULL_HANDLE;
     std::unique_ptr<Targets> targets_;
     VkSwapchainKHR targetsFor_ = VK_NULL_HANDLE;

@@ -112,17 +112,17 @@ using namespace scene_detail;
 
 struct SceneRenderer::Impl {
     gpu::Device& device;
-    RenderTargetFormat target;
-    VkSampleCountFlagBits samples;
+    // The constructor's target (index 0) and those of addTarget().
+    std::vector<RenderTargetFormat> targets;
     std::uint32_t slotCount;
     VkShaderModule vert = VK_NULL_HANDLE, frag = VK_NULL_HANDLE;
     VkShaderModule overlayVert = VK_NULL_HANDLE, overlayFrag = VK_NULL_HANDLE;
     VkPipelineLayout layout = VK_NULL_HANDLE;
     VkDescriptorSetLayout overlaySetLayout = VK_NULL_HANDLE;
     VkPipelineLayout overlayLayout = VK_NULL_HANDLE;
-    // Built on first use, by pipelineKey(), and the overlay.
+    // Built on first use, by pipeline()'s key, and the overlay's per target.
     std::map<std::uint32_t, VkPipeline> pipelines;
-    VkPipeline overlayPipeline = VK_NULL_HANDLE;
+    std::map<std::uint32_t, VkPipeline> overlayPipelines;
 
     std::map<DrawId, Item> items; // ordered by id: the order added
     DrawId nextId = 1;
@@ -148,16 +148,12 @@ struct SceneRenderer::Impl {
 
     Impl(gpu::Device& d, const RenderTargetFormat& t, std::uint32_t s)
         : device(d)
-        , target(t)
         , slotCount(s)
     {
-        if (t.samples != 1 && t.samples != 4)
-            fail("SceneRenderer: samples must be 1 or 4, not ", t.samples);
+        checkTarget(t);
         if (s < 1 || s > 8)
             fail("SceneRenderer: slots must be within 1..8, not ", s);
-        if (!t.renderPass && !d.beginRendering)
-            fail("SceneRenderer: device ", d.name, " has no dynamic rendering; give a render pass in RenderTargetFormat");
-        samples = t.samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT;
+        targets.push_back(t);
         overlayCopies.resize(s);
         vert = gpu::createShaderModule(device, gpu::shaderCode(mesh_vert));
         frag = gpu::createShaderModule(device, gpu::shaderCode(mesh_frag));
@@ -195,8 +191,8 @@ struct SceneRenderer::Impl {
             destroyRetired(r);
         for (auto& [key, p] : pipelines)
             vkDestroyPipeline(device.device, p, nullptr);
-        if (overlayPipeline)
-            vkDestroyPipeline(device.device, overlayPipeline, nullptr);
+        for (auto& [key, p] : overlayPipelines)
+            vkDestroyPipeline(device.device, p, nullptr);
         vkDestroyPipelineLayout(device.device, overlayLayout, nullptr);
         vkDestroyDescriptorSetLayout(device.device, overlaySetLayout, nullptr);
         vkDestroyPipelineLayout(device.device, layout, nullptr);
@@ -275,16 +271,26 @@ struct SceneRenderer::Impl {
     // One pipeline per topology, depth test, DRAW_MODE_* (the fragment shader's specialisation)
     // and blending; opaque meshes are drawn without blending, which saves lavapipe reading back
     // every covered sample.
-    VkPipeline pipeline(Topology topology, bool depthTest, std::uint32_t mode, bool blend)
+    // (and per target).
+    VkPipeline pipeline(std::uint32_t target, Topology topology, bool depthTest, std::uint32_t mode, bool blend)
     {
-        const std::uint32_t key = (std::uint32_t(topology) << 8) | (mode << 2) | (depthTest ? 2u : 0u) | (blend ? 1u : 0u);
+        const std::uint32_t key = (target << 16) | (std::uint32_t(topology) << 8) | (mode << 2) | (depthTest ? 2u : 0u) | (blend ? 1u : 0u);
         VkPipeline& slot = pipelines[key];
         if (!slot)
-            slot = createPipeline(topology, depthTest, false, mode, blend);
+            slot = createPipeline(targets[target], topology, depthTest, false, mode, blend);
         return slot;
     }
 
-    VkPipeline createPipeline(Topology topology, bool depthTest, bool overlayPass, std::uint32_t mode = DRAW_MODE_LIT, bool blended = true)
+    void checkTarget(const RenderTargetFormat& t) const
+    {
+        if (t.samples != 1 && t.samples != 4)
+            fail("SceneRenderer: samples must be 1 or 4, not ", t.samples);
+        if (!t.renderPass && !device.beginRendering)
+            fail("SceneRenderer: device ", device.name, " has no dynamic rendering; give a render pass in RenderTargetFormat");
+    }
+
+    VkPipeline createPipeline(const RenderTargetFormat& target, Topology topology, bool depthTest, bool overlayPass,
+        std::uint32_t mode = DRAW_MODE_LIT, bool blended = true)
     {
         const VkSpecializationMapEntry modeEntry { 0, 0, sizeof(std::uint32_t) };
         VkSpecializationInfo specialization { 1, &modeEntry, sizeof(mode), &mode };
@@ -330,7 +336,7 @@ struct SceneRenderer::Impl {
         raster.lineWidth = 1.0f;
 
         auto multisample = gpu::makeStruct<VkPipelineMultisampleStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO);
-        multisample.rasterizationSamples = samples;
+        multisample.rasterizationSamples = target.samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT;
 
         auto depthState
             = gpu::makeStruct<VkPipelineDepthStencilStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO);
@@ -421,9 +427,16 @@ SceneRenderer::SceneRenderer(gpu::Device& device, const RenderTargetFormat& targ
 }
 SceneRenderer::~SceneRenderer() = default;
 
+std::uint32_t SceneRenderer::addTarget(const RenderTargetFormat& target)
+{
+    impl_->checkTarget(target);
+    impl_->targets.push_back(target);
+    return static_cast<std::uint32_t>(impl_->targets.size() - 1);
+}
+
 const RenderTargetFormat& SceneRenderer::target() const
 {
-    return impl_->target;
+    return impl_->targets.front();
 }
 std::uint32_t SceneRenderer::slots() const
 {
@@ -647,13 +660,18 @@ void SceneRenderer::clear()
     clearOverlay();
 }
 
-void SceneRenderer::record(VkCommandBuffer cmd, std::uint32_t slot, const Camera& camera, VkExtent2D extent)
+void SceneRenderer::record(
+    VkCommandBuffer cmd, std::uint32_t slot, const Camera& camera, VkExtent2D extent, float pixelScale, std::uint32_t target)
 {
     auto& im = *impl_;
     if (slot >= im.slotCount)
         fail("SceneRenderer::record: slot ", slot, " of ", im.slotCount);
     if (extent.width == 0 || extent.height == 0)
         fail("SceneRenderer::record: empty extent ", extent.width, "x", extent.height);
+    if (!(pixelScale > 0 && pixelScale <= 1))
+        fail("SceneRenderer::record: pixel scale ", pixelScale, " must be in (0, 1]");
+    if (target >= im.targets.size())
+        fail("SceneRenderer::record: target ", target, " of ", im.targets.size());
 
     // The slot's previous frame is done: what waited for it may go.
     for (auto it = im.retired.begin(); it != im.retired.end();) {
@@ -679,8 +697,8 @@ void SceneRenderer::record(VkCommandBuffer cmd, std::uint32_t slot, const Camera
     const glm::vec4 toLight(glm::normalize(glm::vec3(-camera.forward + 0.35 * up + 0.15 * right)), 0.0f);
     // Pixels (x right, y down) to clip space: the viewport's y flip puts clip +1 at row 0.
     glm::mat4 pixelsToClip(1.0f);
-    pixelsToClip[0][0] = 2.0f / float(extent.width);
-    pixelsToClip[1][1] = -2.0f / float(extent.height);
+    pixelsToClip[0][0] = 2.0f * pixelScale / float(extent.width);
+    pixelsToClip[1][1] = -2.0f * pixelScale / float(extent.height);
     pixelsToClip[3][0] = -1.0f;
     pixelsToClip[3][1] = 1.0f;
 
@@ -688,11 +706,12 @@ void SceneRenderer::record(VkCommandBuffer cmd, std::uint32_t slot, const Camera
     auto draw = [&](Item& item) {
         im.refresh(item, slot);
         const Topology topology = topologyOf(item.kind);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, im.pipeline(topology, item.depthTest, item.mode, !item.opaque));
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, im.pipeline(target, topology, item.depthTest, item.mode, !item.opaque));
         if (topology == LineList)
-            vkCmdSetLineWidth(cmd, std::clamp(item.size, 1.0f, maxLineWidth));
+            vkCmdSetLineWidth(cmd, std::clamp(item.size * pixelScale, 1.0f, maxLineWidth));
         const bool screen = item.kind == Kind::ScreenPolyline;
-        DrawConstants constants { screen ? pixelsToClip : viewProjection, toLight, item.mode, topology == PointList ? item.size : 1.0f,
+        DrawConstants constants { screen ? pixelsToClip : viewProjection, toLight, item.mode,
+            topology == PointList ? std::max(item.size * pixelScale, std::min(item.size, 1.0f)) : 1.0f,
             topology == TriangleList || screen ? 0.0f : 2e-4f };
         vkCmdPushConstants(cmd, im.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(constants), &constants);
         const VkDeviceSize zero = 0;
@@ -712,9 +731,10 @@ void SceneRenderer::record(VkCommandBuffer cmd, std::uint32_t slot, const Camera
 
     if (im.hasOverlay) {
         im.refreshOverlay(slot);
-        if (!im.overlayPipeline)
-            im.overlayPipeline = im.createPipeline(TriangleList, false, true);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, im.overlayPipeline);
+        VkPipeline& overlayPipeline = im.overlayPipelines[target];
+        if (!overlayPipeline)
+            overlayPipeline = im.createPipeline(im.targets[target], TriangleList, false, true);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, overlayPipeline);
         auto write = gpu::makeStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
         write.dstBinding = 0;
         write.descriptorCount = 1;

@@ -73,7 +73,12 @@ public:
     SceneRenderer(const SceneRenderer&) = delete;
     SceneRenderer& operator=(const SceneRenderer&) = delete;
 
+    /// The constructor's target (record()'s target 0).
     const RenderTargetFormat& target() const;
+    /// Another target record() may draw into, e.g. a one-sample pass for the frames drawn while
+    /// a view moves beside the 4x MSAA one; returns its index for record(). The items are shared;
+    /// pipelines are built per target on first use. Throws Error as the constructor does.
+    std::uint32_t addTarget(const RenderTargetFormat& target);
     std::uint32_t slots() const;
 
     /// A triangle mesh with area-weighted vertex normals (computed on the CPU). `colors`, if
@@ -118,7 +123,13 @@ public:
     /// the render pass of target()), with viewport and scissor covering `extent` pixels. Writes
     /// the changed items into the copies of `slot` first (host writes: no commands recorded
     /// outside the pass). `camera` maps world to clip space; its width/height are not used.
-    void record(VkCommandBuffer cmd, std::uint32_t slot, const Camera& camera, VkExtent2D extent);
+    /// `pixelScale` is the target's pixels per pixel of the caller's coordinates: below 1 when
+    /// the caller draws a reduced-resolution copy of its view (e.g. 0.5 while the view moves),
+    /// so that screen polylines (given in the caller's pixels) land where they belong and
+    /// line widths and point sizes shrink with the image (never below 1 pixel). `target`: 0 for
+    /// the constructor's, or an index from addTarget(); the pass begun must be of that target.
+    void record(VkCommandBuffer cmd, std::uint32_t slot, const Camera& camera, VkExtent2D extent, float pixelScale = 1.0f,
+        std::uint32_t target = 0);
 
 private:
     struct Impl;

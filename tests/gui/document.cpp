@@ -241,10 +241,104 @@ TEST_CASE(
     REQUIRE(other.poseEditor()->face().V == smiled);
     REQUIRE(other.undo());
     REQUIRE(other.poseEditor()->keyframes().size() == 1);
+    // Opened again over this work (two actions undone), the open undoes to the work as it was
+    // posed, its undone actions redo, then the open again.
+    const Vertices workFace = other.poseEditor()->face().V;
+    const size_t workPoses = other.poseAppliedCount();
+    REQUIRE(other.open(file) == 0);
+    REQUIRE(other.poseEditor()->face().V == smiledWider);
+    REQUIRE(other.undoReopens());
+    REQUIRE(other.undo());
+    REQUIRE(other.poseAppliedCount() == workPoses);
+    REQUIRE(other.poseEditor()->face().V == workFace);
+    REQUIRE(other.redo());
+    REQUIRE(other.redo());
+    REQUIRE(other.poseEditor()->face().V == smiledWider);
+    REQUIRE(other.redoReopens());
+    REQUIRE(other.redo());
+    REQUIRE(other.poseEditor()->face().V == smiledWider);
+    REQUIRE(sketch::operator==(other.session(), doc.session()));
 
     // Export writes the posed face.
     doc.exportMesh(in.dir / "posed.ply");
     REQUIRE((readMesh(in.dir / "posed.ply").V - smiledWider).cwiseAbs().maxCoeff() < 1e-4);
+}
+
+TEST_CASE("document: opening a session over work is one action, undone to the work exactly and redone")
+{
+    const auto& w = test::sketchWorld();
+    Inputs in;
+    // The session to open: one stroke, drawn by another document.
+    sketch::SessionReplayer b(test::device(), w.model, w.candidateFaces, w.flags, {}, "model");
+    Document other(b, in.model, in.dataset);
+    addApplied(other, 1);
+    const std::filesystem::path file = in.dir / "one.session.json";
+    other.save(file);
+
+    // The work: three strokes, the last one undone (to be redone).
+    sketch::SessionReplayer a(test::device(), w.model, w.candidateFaces, w.flags, {}, "model");
+    Document doc(a, in.model, in.dataset);
+    addApplied(doc, 3);
+    REQUIRE(doc.undo());
+    const Mesh work = doc.face();
+    const sketch::Session workSession = doc.session();
+    const std::uint64_t workRevision = doc.revision();
+    REQUIRE(work.V != other.face().V);
+    REQUIRE_FALSE(doc.undoReopens());
+
+    REQUIRE(doc.open(file) == 0);
+    REQUIRE(doc.face().V == other.face().V);
+    REQUIRE(doc.appliedCount() == 1);
+    REQUIRE_FALSE(doc.canRedo()); // (the work's undone stroke comes back with the work)
+    REQUIRE(doc.undoReopens());
+    // One undo brings the work back as it was: strokes in effect, the undone one, the face.
+    REQUIRE(doc.undo());
+    REQUIRE(doc.face().V == work.V);
+    REQUIRE(sketch::operator==(doc.session(), workSession));
+    REQUIRE(doc.strokes().size() == 3);
+    REQUIRE(doc.appliedCount() == 2);
+    REQUIRE(doc.revision() == workRevision);
+    REQUIRE_FALSE(doc.undoReopens());
+    // Redo: first the work's undone stroke, then the open again.
+    REQUIRE(doc.redo());
+    REQUIRE(doc.appliedCount() == 3);
+    const Mesh workAll = doc.face();
+    REQUIRE(doc.redoReopens());
+    REQUIRE(doc.redo());
+    REQUIRE(doc.face().V == other.face().V);
+    REQUIRE(sketch::operator==(doc.session(), other.session()));
+    REQUIRE_FALSE(doc.canRedo());
+
+    // A stroke on the opened session undoes one by one down to the open, then the open goes.
+    addApplied(doc, 2);
+    REQUIRE_FALSE(doc.undoReopens());
+    REQUIRE(doc.undo());
+    REQUIRE(doc.face().V == other.face().V);
+    REQUIRE(doc.undoReopens());
+    REQUIRE(doc.undo());
+    REQUIRE(doc.face().V == workAll.V);
+    REQUIRE(doc.appliedCount() == 3);
+    // The work's own history is still there; a new action forgets the undone open.
+    REQUIRE(doc.undo());
+    REQUIRE(doc.face().V == work.V);
+    REQUIRE(doc.canRedo());
+    doc.addStroke(doc.strokes()[2].action);
+    REQUIRE(doc.appliedCount() == 3);
+    REQUIRE_FALSE(doc.canRedo());
+
+    // An open that fails changes nothing, undone strokes included.
+    REQUIRE(doc.undo());
+    test::writeText(in.dir / "cut.json", "{\"format\": \"facesketch-session\", \"vers");
+    REQUIRE_THROWS_AS(doc.open(in.dir / "cut.json"), Error);
+    // (its first stroke is applied before the second's unknown mapper throws)
+    sketch::Session broken = other.session();
+    broken.actions.push_back(broken.actions.front());
+    broken.actions.back().reading.mapper = "nope";
+    REQUIRE_THROWS_WITH(doc.load(broken, in.dir / "x.json", "x.json"), Catch::Contains("nope"));
+    REQUIRE(doc.face().V == work.V);
+    REQUIRE(doc.appliedCount() == 2);
+    REQUIRE(doc.redo());
+    REQUIRE(doc.appliedCount() == 3);
 }
 
 TEST_CASE("document: a session of another model or a broken file is refused and changes nothing")

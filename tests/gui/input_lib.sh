@@ -30,6 +30,17 @@ wait_for() {
   fail "no '$pattern' in the app's output after $seconds s"
 }
 
+# Waits (up to $3 s, default 120) until at least $2 lines of the app's output match $1.
+wait_for_count() {
+  local pattern=$1 n=$2 seconds=${3:-120} i
+  for ((i = 0; i < seconds * 10; ++i)); do
+    if [ "$(grep -Ec "$pattern" "$WORK/app.log" 2> /dev/null || true)" -ge "$n" ]; then return 0; fi
+    if [ -n "${APP:-}" ] && ! kill -0 "$APP" 2> /dev/null; then fail "the app exited while waiting for $n lines of '$pattern'"; fi
+    sleep 0.1
+  done
+  fail "fewer than $n lines of '$pattern' in the app's output after $seconds s"
+}
+
 # Starts the app on the small data with the extra arguments; sets APP (pid) and WID (window).
 start_app() {
   export FACESKETCH_STATE_DIR="$WORK/state" FACESKETCH_CACHE_DIR="$WORK/cache"

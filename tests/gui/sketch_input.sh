@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Tested as a person would use it (issue 14): under an X server (Xvfb when there is no DISPLAY),
 # real input events from xdotool: a stroke along the upper lip, key 3 (profile), a stroke along
-# the nose profile, Ctrl+Z, Ctrl+Shift+Z, Ctrl+S (to --session-out), Ctrl+E (export), Ctrl+Q.
+# the nose profile, Ctrl+Z, Ctrl+Shift+Z, Ctrl+S (to --session-out); then Ctrl+Z (work that differs
+# from the file), Ctrl+O (opening the file over it), Ctrl+Z (the open undone: the work is back,
+# one stroke in effect), Ctrl+Shift+Z (its second stroke); Ctrl+E (export), Ctrl+Q.
 # Then: the session holds the two strokes with their views; `facesketch sketch` replaying it
 # gives the app's exported face to 1e-5 mm; the screenshot shows the face (not blank).
 # Usage: sketch_input.sh FACESKETCH WORK
@@ -27,6 +29,14 @@ key ctrl+shift+z
 wait_for "gui: redone, 2 strokes in effect"
 key ctrl+s
 wait_for "gui: saved .*app.json \(2 strokes\)"
+key ctrl+z
+wait_for_count "gui: undone, 1 strokes in effect" 2
+key ctrl+o
+wait_for "gui: opened .*app.json \(2 strokes\)"
+key ctrl+z
+wait_for "gui: undone the open, 1 strokes in effect"
+key ctrl+shift+z
+wait_for_count "gui: redone, 2 strokes in effect" 2
 key ctrl+e
 wait_for "gui: exported .*app.obj"
 key ctrl+q

@@ -17,17 +17,19 @@ namespace {
 
 // Draws `scene` (made for dynamic rendering, R8G8B8A8_UNORM) with render/pass into an image
 // of its own and reads it back after the submission's fence.
-Image drawDynamic(SceneRenderer& scene, std::uint32_t slot, const Camera& camera, int width, int height, glm::vec4 background)
+// `target`/`format`: another of the scene's targets (addTarget) and its format.
+Image drawDynamic(SceneRenderer& scene, std::uint32_t slot, const Camera& camera, int width, int height, glm::vec4 background,
+    float pixelScale = 1.0f, std::uint32_t target = 0, const RenderTargetFormat* format = nullptr)
 {
     gpu::Device& d = test::device();
     const VkExtent2D extent { std::uint32_t(width), std::uint32_t(height) };
-    PassTargets targets = createPassTargets(d, scene.target(), extent);
+    PassTargets targets = createPassTargets(d, format ? *format : scene.target(), extent);
     gpu::Image output = gpu::createImage(d, extent.width, extent.height, scene.target().color,
         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
     gpu::Buffer readback = gpu::createBuffer(d, VkDeviceSize(width) * height * 4, 0, gpu::MemoryUse::Readback);
     gpu::submitAndWait(d, [&](VkCommandBuffer cmd) {
         beginPass(d, cmd, targets, output.image, output.view, background);
-        scene.record(cmd, slot, camera, extent);
+        scene.record(cmd, slot, camera, extent, pixelScale, target);
         endPass(d, cmd, output.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         VkBufferImageCopy region {};
         region.imageSubresource = { VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1 };
@@ -258,6 +260,66 @@ TEST_CASE("scene renderer: a screen polyline lands on its pixels, over a mesh, a
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
 
+TEST_CASE("scene renderer: at a pixel scale, screen polylines in the caller's pixels land on the reduced target's pixels")
+{
+    // The app draws its view at half resolution while it moves; strokes are in window pixels.
+    const int size = 64;
+    SceneRenderer scene(test::device(), { .color = VK_FORMAT_R8G8B8A8_UNORM, .depth = VK_FORMAT_D32_SFLOAT, .samples = 1 }, 1);
+    scene.addScreenPolyline({ { 8.5f, 40.5f }, { 100.5f, 40.5f }, { 100.5f, 120.5f } }, { { 1, 0, 0, 1 } });
+    const Camera camera = frameSphere({ 0, 0, 0 }, 1.0, { 0, 0 }, size, size);
+    const Image full = drawDynamic(scene, 0, camera, 2 * size, 2 * size, { 1, 1, 1, 1 });
+    const Image half = drawDynamic(scene, 0, camera, size, size, { 1, 1, 1, 1 }, 0.5f);
+    auto red = [](const Image& image, int x, int y) {
+        const std::uint8_t* p = image.at(x, y);
+        return p[0] == 255 && p[1] == 0 && p[2] == 0;
+    };
+    REQUIRE(red(full, 60, 40));
+    REQUIRE(red(full, 100, 80));
+    REQUIRE_FALSE(red(full, 30, 20));
+    // Half the coordinates: row 20 from column 4, then down column 50.
+    REQUIRE(red(half, 30, 20));
+    REQUIRE(red(half, 50, 40));
+    REQUIRE_FALSE(red(half, 30, 40));
+    REQUIRE_FALSE(red(half, 60, 20));
+    int redPixels = 0;
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x)
+            redPixels += red(half, x, y);
+    REQUIRE(redPixels >= 80); // 46 + 40 pixels of one-pixel line, about
+    REQUIRE(redPixels <= 92);
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("scene renderer: an added one-sample target draws the items as a one-sample renderer does, the MSAA one unchanged")
+{
+    const RenderTargetFormat msaa { .color = VK_FORMAT_R8G8B8A8_UNORM, .depth = VK_FORMAT_D32_SFLOAT, .samples = 4 };
+    const RenderTargetFormat single { .color = VK_FORMAT_R8G8B8A8_UNORM, .depth = VK_FORMAT_D32_SFLOAT, .samples = 1 };
+    const Mesh sphere = makeIcosphere(1.0, 3);
+    const Camera camera = frameSphere({ 0, 0, 0 }, 1.2, { 30, 10 }, 96, 80);
+    SceneRenderer both(test::device(), msaa, 1);
+    addTestScene(both, sphere);
+    const std::uint32_t added = both.addTarget(single);
+    REQUIRE(added == 1);
+    SceneRenderer one(test::device(), single, 1), four(test::device(), msaa, 1);
+    addTestScene(one, sphere);
+    addTestScene(four, sphere);
+    const glm::vec4 background { 0.9f, 0.9f, 0.95f, 1 };
+    const Image viaAdded = drawDynamic(both, 0, camera, 96, 80, background, 1.0f, added, &single);
+    const Image viaMain = drawDynamic(both, 0, camera, 96, 80, background);
+    const Image expectedOne = drawDynamic(one, 0, camera, 96, 80, background);
+    const Image expectedFour = drawDynamic(four, 0, camera, 96, 80, background);
+    INFO(firstDifference(viaAdded, expectedOne));
+    REQUIRE(viaAdded.pixels == expectedOne.pixels);
+    INFO(firstDifference(viaMain, expectedFour));
+    REQUIRE(viaMain.pixels == expectedFour.pixels);
+    REQUIRE(viaAdded.pixels != viaMain.pixels); // MSAA edges differ
+    REQUIRE_THROWS_AS(both.addTarget({ .color = VK_FORMAT_R8G8B8A8_UNORM, .depth = VK_FORMAT_D32_SFLOAT, .samples = 2 }), Error);
+    gpu::submitAndWait(test::device(), [&](VkCommandBuffer cmd) {
+        REQUIRE_THROWS_AS(both.record(cmd, 0, camera, { 8, 8 }, 1.0f, 2), Error);
+    });
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
 TEST_CASE("scene renderer: bad arguments are errors before anything changes")
 {
     gpu::Device& d = test::device();
@@ -271,5 +333,7 @@ TEST_CASE("scene renderer: bad arguments are errors before anything changes")
     REQUIRE_THROWS_AS(scene.addPoints({ { 0, 0, 0 } }, { { 1, 1, 1, 1 } }, 0.0f), Error);
     REQUIRE_THROWS_AS(scene.remove(12345), Error);
     gpu::submitAndWait(d, [&](VkCommandBuffer cmd) { REQUIRE_THROWS_AS(scene.record(cmd, 2, Camera {}, { 8, 8 }), Error); });
+    for (float scale : { 0.0f, 1.5f, std::nanf("") })
+        gpu::submitAndWait(d, [&](VkCommandBuffer cmd) { REQUIRE_THROWS_AS(scene.record(cmd, 0, Camera {}, { 8, 8 }, scale), Error); });
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
