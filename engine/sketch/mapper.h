@@ -68,7 +68,9 @@ struct MapperParams {
     double candidateRadiusTau = 2.0;
     /// ... and within this distance (mm) of the point's projected depth along the view axis
     /// (4.4's "fixed world distance"). Not given by the thesis; 40 mm keeps the front and back
-    /// of a face apart but not a nose from its cheek.
+    /// of a face apart but not a nose from its cheek. 15 mm helps a profile view (the HMM 0.587
+    /// -> 0.540 of the mean face's error, synthetic high set, 10 test faces) but costs the front
+    /// and 34 views and every view of an ICT import (docs/sketching.md, 2 December).
     double depthToleranceMm = 40.0;
     /// At most this many candidates per point, the nearest on screen (bounds m in O(n m^2)).
     /// Not given by the thesis. 96 (48 before 2 December): with the contours of 230 training
