@@ -30,7 +30,6 @@ struct EvalStrokesCommand {
     bool noCorrelation = false, quiet = false, noProject = false, ownContours = false, thesisObservations = false;
     std::string oracle = "none";
     double supersedeRadius = sketch::TrackingOptions {}.supersedeRadius;
-    double observationNoise = -1;
     std::vector<std::string> mapperParams;
 };
 
@@ -51,15 +50,16 @@ void printRecords(const std::vector<evaluation::StrokeEvalRecord>& records)
     std::cout << std::fixed << std::left << std::setw(9) << "view" << std::setw(11) << "mapper" << std::right << std::setw(7) << "faces"
               << std::setw(9) << "strokes" << std::setw(8) << "unread" << std::setw(10) << "observed" << std::setw(10) << "mean mm"
               << std::setw(14) << "mean face mm" << std::setw(8) << "ratio" << std::setw(10) << "read ms" << std::setw(10) << "apply ms"
-              << std::setw(10) << "plane mm" << std::setw(10) << "depth mm" << std::setw(8) << "<=1mm" << std::setw(8) << "<=3mm"
+              << std::setw(10) << "plane mm" << std::setw(10) << "depth mm" << std::setw(10) << "across mm" << std::setw(8) << "<=1mm"
+              << std::setw(8) << "<=3mm"
               << "\n";
     for (const auto& r : records)
         std::cout << std::left << std::setw(9) << r.view << std::setw(11) << r.mapper << std::right << std::setw(7) << r.faces
                   << std::setw(9) << r.strokes << std::setw(8) << r.unread + r.failed << std::setw(10) << std::setprecision(0)
                   << r.observedVertices << std::setprecision(2) << std::setw(10) << r.meanMm << std::setw(14) << r.meanFaceMm
                   << std::setprecision(3) << std::setw(8) << r.ratio << std::setprecision(1) << std::setw(10) << r.readMs << std::setw(10)
-                  << r.applyMs << std::setprecision(2) << std::setw(10) << r.planeMm << std::setw(10) << r.depthMm << std::setw(8)
-                  << r.within1Mm << std::setw(8) << r.within3Mm << "\n";
+                  << r.applyMs << std::setprecision(2) << std::setw(10) << r.planeMm << std::setw(10) << r.depthMm << std::setw(10)
+                  << r.acrossMm << std::setw(8) << r.within1Mm << std::setw(8) << r.within3Mm << "\n";
 }
 
 void runEvalStrokes(const EvalStrokesCommand& c)
@@ -96,8 +96,6 @@ void runEvalStrokes(const EvalStrokesCommand& c)
         o.params = sketch::MapperParams::thesis();
     o.params.ownContours = c.ownContours;
     o.params.similarFaces = c.similarFaces;
-    if (c.observationNoise >= 0)
-        o.params.observationNoiseMm = c.observationNoise;
     for (const std::string& assignment : c.mapperParams)
         sketch::setMapperParam(o.params, assignment);
     o.rereads = c.rereads;
@@ -122,13 +120,12 @@ void runEvalStrokes(const EvalStrokesCommand& c)
                 { "mean_mm", r.meanMm }, { "ratio", r.ratio }, { "extreme", r.extreme }, { "mean_face_mm", r.meanFaceMm },
                 { "strokes", r.strokes }, { "unread", r.unread }, { "failed", r.failed }, { "observed_vertices", r.observedVertices },
                 { "read_ms", r.readMs }, { "apply_ms", r.applyMs }, { "plane_mm", r.planeMm }, { "depth_mm", r.depthMm },
-                { "within_1mm", r.within1Mm }, { "within_3mm", r.within3Mm } });
+                { "across_mm", r.acrossMm }, { "within_1mm", r.within1Mm }, { "within_3mm", r.within3Mm } });
         const nlohmann::json doc { { "model", c.model }, { "dataset", c.dataset }, { "vertices", m.vertexCount() },
             { "image_size", c.size }, { "seed", c.seed }, { "correlation", !c.noCorrelation }, { "supersede_radius_mm", c.supersedeRadius },
             { "project_onto_face_space", !c.noProject }, { "view_plane_only", o.params.viewPlaneOnly }, { "own_contours", c.ownContours },
             { "across_stroke", o.params.acrossStrokeOnly }, { "similar_faces", c.similarFaces }, { "rereads", c.rereads },
-            { "observation_noise_mm", o.params.observationNoiseMm }, { "mapper_params", c.mapperParams }, { "oracle", c.oracle },
-            { "results", records } };
+            { "mapper_params", c.mapperParams }, { "oracle", c.oracle }, { "results", records } };
         writeFileAtomically(c.json, [&](std::ostream& out) { out << doc.dump(1) << "\n"; });
         std::cout << "wrote " << c.json << "\n";
     }
@@ -189,11 +186,8 @@ void addEvalStrokesCommand(CLI::App& eval)
     cmd->add_option("--rereads", c->rereads, "Read each stroke again this many times against the face its reading rebuilt")
         ->capture_default_str()
         ->check(CLI::Range(0, 10));
-    cmd->add_option("--observation-noise", c->observationNoise,
-           "Standard deviation of every observation's error, mm (0 pins the mapped vertices; default: the mapper's)")
-        ->check(CLI::Range(0.0, 100.0));
     cmd->add_option("--mapper-param", c->mapperParams,
-        "Set one mapper parameter, NAME=VALUE (repeatable; names as in sketch/mapper.h MapperParams, e.g. sigmaDTau=2, vertexStates=1)");
+        "Set one mapper parameter, NAME=VALUE (repeatable; names as in sketch/mapper.h MapperParams, e.g. sigmaDTau=2, useSkeleton=0)");
     cmd->add_flag("--own-contours", c->ownContours, "The current face's own contours join the candidate cloud");
     cmd->add_option("--oracle", c->oracle,
            "Diagnosis: give the tracking model the mapped vertices at the true depth (true-depth) or true position (true-position)")

@@ -28,8 +28,8 @@ Eigen::VectorXd vertexErrors(const Eigen::VectorXd& face, const Mesh& truth)
 struct Sums {
     double mean = 0, meanFace = 0, observed = 0, readMs = 0, applyMs = 0;
     int faces = 0, strokes = 0, unread = 0, failed = 0;
-    double planeMm = 0, depthMm = 0, within1 = 0, within3 = 0;
-    long observations = 0;
+    double planeMm = 0, depthMm = 0, within1 = 0, within3 = 0, acrossMm = 0;
+    long observations = 0, across = 0;
 };
 
 Eigen::Vector3d axisOf(const Eigen::Matrix<double, 2, 3>& P)
@@ -142,6 +142,10 @@ StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data
                         s.within1 += plane <= 1.0;
                         s.within3 += plane <= 3.0;
                         ++s.observations;
+                        if (!o.acrossStroke.isZero()) {
+                            s.acrossMm += std::abs(o.acrossStroke.dot(o.position - truth));
+                            ++s.across;
+                        }
                         if (options.oracle == StrokeOracle::TrueDepth)
                             o.position += axis * axis.dot(truth - o.position);
                         else if (options.oracle == StrokeOracle::TruePosition)
@@ -211,6 +215,8 @@ StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data
                 r.within1Mm = s.within1 / n;
                 r.within3Mm = s.within3 / n;
             }
+            if (s.across > 0)
+                r.acrossMm = s.acrossMm / static_cast<double>(s.across);
             result.records.push_back(r);
         }
     return result;

@@ -83,6 +83,10 @@ struct StrokeEvalRecord {
     /// vertex's image: the identity error), and the mean absolute depth error along the view
     /// axis (mm) of the observed position. Before any oracle replaces them.
     double planeMm = 0, depthMm = 0;
+    /// Of the observations pinned across the stroke (VertexObservation::acrossStroke): the mean
+    /// distance of the traced vertex from the stroke point across the stroke (mm), the part of
+    /// the identity error the observation passes on to the face.
+    double acrossMm = 0;
     /// Fraction of observations whose vertex's traced image lies within 1 mm / 3 mm of the
     /// stroke point in the view plane.
     double within1Mm = 0, within3Mm = 0;

@@ -12,65 +12,9 @@
 
 namespace facesketch::sketch {
 
-namespace {
-
-// MapperParams::vertexStates: per point, its candidates grouped by vertex (each vertex stands as
-// its nearest candidate, nearest first), at most maxCandidatesPerPoint of them (the nearest, or
-// with voteEmission the densest), and each one's log kernel density (0 without voteEmission).
-struct VertexStates {
-    std::vector<std::vector<int>> perPoint;
-    std::vector<std::vector<double>> logVote;
-};
-
-VertexStates vertexStates(const MappingProblem& problem, double sigmaVotePx)
+Mapping mapHmm(const MappingProblem& problem)
 {
-    VertexStates out;
-    out.perPoint.resize(problem.screen.size());
-    out.logVote.resize(problem.screen.size());
-    const std::size_t keep = static_cast<std::size_t>(problem.params.maxCandidatesPerPoint);
-    std::map<std::uint32_t, std::size_t> slot;
-    std::vector<std::pair<int, double>> groups; // (representative, density)
-    for (std::size_t i = 0; i < problem.screen.size(); ++i) {
-        slot.clear();
-        groups.clear();
-        for (int c : problem.perPoint[i]) {
-            const Candidate& k = problem.cloud[static_cast<std::size_t>(c)];
-            const double d = (Eigen::Vector2d(k.screen[0], k.screen[1]) - problem.screen[i]).norm() / sigmaVotePx;
-            const auto [it, inserted] = slot.try_emplace(k.vertex, groups.size());
-            if (inserted)
-                groups.push_back({ c, 0.0 });
-            groups[it->second].second += std::exp(-0.5 * d * d);
-        }
-        // The densest first; the order among the kept stays nearest first (the candidates'
-        // order), so ties in Viterbi break as before.
-        std::vector<std::size_t> order(groups.size());
-        for (std::size_t g = 0; g < groups.size(); ++g)
-            order[g] = g;
-        if (order.size() > keep && problem.params.voteEmission) {
-            std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return groups[a].second > groups[b].second; });
-            std::sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(keep));
-        }
-        order.resize(std::min(order.size(), keep));
-        for (std::size_t g : order) {
-            out.perPoint[i].push_back(groups[g].first);
-            // The nearest candidate of a kept vertex contributes at least exp(-r^2/2) with r
-            // the radius in sigma: a density of 0 only underflows far outside the radius.
-            out.logVote[i].push_back(problem.params.voteEmission ? std::log(std::max(groups[g].second, 1e-300)) : 0.0);
-        }
-    }
-    return out;
-}
-
-} // namespace
-
-Mapping mapHmm(const MappingProblem& original)
-{
-    const MapperParams& params = original.params;
-    VertexStates states;
-    if (params.vertexStates)
-        states = vertexStates(original, params.sigmaVoteMm * pixelsPerMm(original.camera, original.world[0]));
-    const MappingProblem problem { original.camera, original.screen, original.world, original.cloud,
-        params.vertexStates ? states.perPoint : original.perPoint, original.templateScreen, original.rings, original.tau, params };
+    const MapperParams& params = problem.params;
     const std::size_t n = problem.screen.size();
     Mapping out;
     out.chosen.assign(n, -1);
@@ -104,8 +48,7 @@ Mapping mapHmm(const MappingProblem& original)
         const Eigen::Index m = static_cast<Eigen::Index>(problem.perPoint[i].size());
         logEmission[l].resize(m);
         for (Eigen::Index j = 0; j < m; ++j)
-            logEmission[l][j] = -0.5 * square((screenOf(candidate(i, j)) - problem.screen[i]).norm() / sigmaD)
-                + (params.vertexStates ? states.logVote[i][static_cast<std::size_t>(j)] : 0.0);
+            logEmission[l][j] = -0.5 * square((screenOf(candidate(i, j)) - problem.screen[i]).norm() / sigmaD);
     }
 
     // 4.8.5.3: "the nearest stroke point is assigned to each contour", and psi_stroke compares

@@ -63,9 +63,6 @@ void MapperParams::validate() const
         fail("mapper parameter borderRings = ", borderRings, " must be in [0, 16]");
     if (similarFaces < 0)
         fail("mapper parameter similarFaces = ", similarFaces, " must be at least 0");
-    if (votePoolPerPoint < 1)
-        fail("mapper parameter votePoolPerPoint = ", votePoolPerPoint, " must be at least 1");
-    positive("sigmaVoteMm", sigmaVoteMm);
     if (maxCandidatesPerPoint < 1)
         fail("mapper parameter maxCandidatesPerPoint = ", maxCandidatesPerPoint, " must be at least 1");
     positive("sigmaS", sigmaS);
@@ -74,8 +71,6 @@ void MapperParams::validate() const
     positive("sigmaStroke", sigmaStroke);
     positive("sigmaSkelTau", sigmaSkelTau);
     nonNegative("unreachableHops", unreachableHops);
-    nonNegative("observationNoiseMm", observationNoiseMm);
-    nonNegative("alongStrokeNoiseMm", alongStrokeNoiseMm);
     nonNegative("lambda", lambda);
     nonNegative("alpha", alpha);
     nonNegative("beta", beta);
@@ -99,18 +94,16 @@ void setMapperParam(MapperParams& params, const std::string& assignment)
     }
     const std::map<std::string, double*> reals { { "densifyGapPx", &params.densifyGapPx }, { "splineTension", &params.splineTension },
         { "tauMm", &params.tauMm }, { "candidateRadiusTau", &params.candidateRadiusTau }, { "depthToleranceMm", &params.depthToleranceMm },
-        { "observationNoiseMm", &params.observationNoiseMm }, { "alongStrokeNoiseMm", &params.alongStrokeNoiseMm },
         { "sigmaS", &params.sigmaS }, { "sigmaDTau", &params.sigmaDTau }, { "sigmaC", &params.sigmaC },
         { "sigmaStroke", &params.sigmaStroke }, { "sigmaSkelTau", &params.sigmaSkelTau }, { "unreachableHops", &params.unreachableHops },
-        { "sigmaVoteMm", &params.sigmaVoteMm }, { "lambda", &params.lambda }, { "alpha", &params.alpha }, { "beta", &params.beta },
+        { "lambda", &params.lambda }, { "alpha", &params.alpha }, { "beta", &params.beta },
         { "heuristicEndpointRadiusTau", &params.heuristicEndpointRadiusTau } };
     const std::map<std::string, int*> integers { { "maxCandidatesPerPoint", &params.maxCandidatesPerPoint },
-        { "borderRings", &params.borderRings }, { "similarFaces", &params.similarFaces },
-        { "votePoolPerPoint", &params.votePoolPerPoint } };
+        { "borderRings", &params.borderRings }, { "similarFaces", &params.similarFaces } };
     const std::map<std::string, bool*> flags { { "ownContours", &params.ownContours }, { "viewPlaneOnly", &params.viewPlaneOnly },
         { "acrossStrokeOnly", &params.acrossStrokeOnly }, { "useConnectivity", &params.useConnectivity },
-        { "useStroke", &params.useStroke }, { "useSkeleton", &params.useSkeleton }, { "vertexStates", &params.vertexStates },
-        { "voteEmission", &params.voteEmission }, { "heuristicConnectivity", &params.heuristicConnectivity } };
+        { "useStroke", &params.useStroke }, { "useSkeleton", &params.useSkeleton },
+        { "heuristicConnectivity", &params.heuristicConnectivity } };
     if (const auto r = reals.find(name); r != reals.end()) {
         *r->second = value;
     } else if (const auto i = integers.find(name); i != integers.end()) {
@@ -306,12 +299,8 @@ StrokeReading StrokeReader::read(const Stroke& stroke, const Mesh& currentFace, 
                                 && impl_->borderHops[c.vertex] < params.borderRings;
                         }),
             cloud.end());
-    // The HMM's vertex states group a larger pool (MapperParams::vertexStates).
-    const int perPointLimit = kind == MapperKind::Hmm && params.vertexStates
-        ? std::max(params.maxCandidatesPerPoint, params.votePoolPerPoint)
-        : params.maxCandidatesPerPoint;
-    const std::vector<std::vector<int>> perPoint
-        = candidatesPerPoint(cloud, camera, projected.screen, projected.world, radiusPx, params.depthToleranceMm, perPointLimit);
+    const std::vector<std::vector<int>> perPoint = candidatesPerPoint(
+        cloud, camera, projected.screen, projected.world, radiusPx, params.depthToleranceMm, params.maxCandidatesPerPoint);
     std::size_t withCandidates = 0;
     for (std::size_t i = 0; i < n; ++i) {
         reading.candidateCounts[i] = static_cast<int>(perPoint[i].size());
@@ -349,12 +338,8 @@ StrokeReading StrokeReader::read(const Stroke& stroke, const Mesh& currentFace, 
     const Eigen::Vector3d axis = viewAxis(camera);
     for (VertexObservation& o : reading.observations) {
         o.viewPlaneOnly = params.viewPlaneOnly;
-        o.noiseMm = params.observationNoiseMm;
-        if (params.acrossStrokeOnly) {
+        if (params.acrossStrokeOnly)
             o.acrossStroke = acrossStrokeAt(projected.world, static_cast<std::size_t>(o.strokePoint), axis);
-            if (!o.acrossStroke.isZero())
-                o.alongNoiseMm = params.alongStrokeNoiseMm;
-        }
     }
     if (withCandidates < n)
         reading.message

@@ -68,7 +68,9 @@ struct MapperParams {
     double candidateRadiusTau = 2.0;
     /// ... and within this distance (mm) of the point's projected depth along the view axis
     /// (4.4's "fixed world distance"). Not given by the thesis; 40 mm keeps the front and back
-    /// of a face apart but not a nose from its cheek.
+    /// of a face apart but not a nose from its cheek. 15 mm helps a profile view (the HMM 0.587
+    /// -> 0.540 of the mean face's error, synthetic high set, 10 test faces) but costs the front
+    /// and 34 views and every view of an ICT import (docs/sketching.md, 2 December).
     double depthToleranceMm = 40.0;
     /// At most this many candidates per point, the nearest on screen (bounds m in O(n m^2)).
     /// Not given by the thesis. 96 (48 before 2 December): with the contours of 230 training
@@ -107,15 +109,6 @@ struct MapperParams {
     /// same stroke), the faces most like it place each vertex nearest where the sketched face
     /// has it, so the vertex under a stroke point is more often the right one.
     int similarFaces = 0;
-    /// Standard deviation (mm) of every observation's error (VertexObservation::noiseMm): the
-    /// rebuilt face is pulled towards the observations by their weight against the model
-    /// instead of passing exactly through them. 0 pins them (the thesis' hard constraints).
-    double observationNoiseMm = 0.0;
-    /// With acrossStrokeOnly: when above 0, observations also measure the vertex's image along
-    /// the stroke, with this standard deviation (mm; VertexObservation::alongNoiseMm), so the
-    /// stroke says roughly, not precisely, which vertex lies under which point. 0: along the
-    /// stroke is left to the model.
-    double alongStrokeNoiseMm = 0.0;
 
     // --- HMM (4.8.5) ---
     double sigmaS = 0.4; ///< initial probability, eq. 4.45
@@ -137,20 +130,6 @@ struct MapperParams {
     bool useConnectivity = true; ///< gamma_1 (4.48) on; off for the thesis' comparison of 4.9
     bool useStroke = true;       ///< gamma_2 (4.50)
     bool useSkeleton = true;     ///< gamma_3 (4.52)
-    /// Beyond the thesis: the HMM's states at a point are distinct vertices, not candidates.
-    /// The point's `votePoolPerPoint` nearest candidates (of every training face) are grouped
-    /// by vertex, each vertex standing as its nearest candidate (in the emission of 4.47 and
-    /// the transitions), and the maxCandidatesPerPoint nearest vertices are kept: m states are
-    /// m different vertices rather than a few vertices' copies from many faces, so the right
-    /// vertex is more often among them at the same O(n m^2). false: the thesis' states.
-    bool vertexStates = false;
-    /// With vertexStates: a vertex's emission also has the log of its kernel density at the
-    /// point, sum over its candidates of exp(-d^2 / 2 sigma_vote^2) (d: screen distance), and
-    /// the densest vertices are kept instead of the nearest: a vertex many training faces put
-    /// on this line outweighs one face's stray vertex.
-    bool voteEmission = false;
-    int votePoolPerPoint = 256; ///< candidates per point grouped into vertex states
-    double sigmaVoteMm = 1.0;   ///< sigma_vote, mm on screen at the face's centre
 
     // --- heuristic (4.6.1) ---
     double lambda = 1.0; ///< weight of the endpoint term of eq. 4.29 (in tau units)
@@ -177,10 +156,6 @@ struct MapperParams {
         p.maxCandidatesPerPoint = 48;
         p.viewPlaneOnly = false;
         p.acrossStrokeOnly = false;
-        p.observationNoiseMm = 0.0;
-        p.alongStrokeNoiseMm = 0.0;
-        p.vertexStates = false;
-        p.voteEmission = false;
         return p;
     }
     /// Throws Error naming the first field that is not positive/finite where it must be.

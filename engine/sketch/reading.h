@@ -25,14 +25,6 @@ struct VertexObservation {
     /// it, that direction and the depth along the view axis.
     Eigen::Vector3d acrossStroke = Eigen::Vector3d::Zero();
     int strokePoint = -1; ///< index of the (densified) stroke point it came from
-    /// Standard deviation (mm) of the observation's error: 0 pins the vertex (the thesis'
-    /// hard constraint); above 0 it pulls the face towards `position` by its weight
-    /// (stats::Observations' noise, MapperParams::observationNoiseMm).
-    double noiseMm = 0.0;
-    /// With acrossStroke set: when above 0, the image's position along the stroke is measured
-    /// too, with this standard deviation (mm): which vertex lies under which point is uncertain
-    /// by about an edge, not unknown (MapperParams::alongStrokeNoiseMm). 0: not measured.
-    double alongNoiseMm = 0.0;
 };
 
 struct StrokeReading {

@@ -3,7 +3,6 @@
 #include "core/error.h"
 #include "sketch/symmetry.h"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
@@ -28,78 +27,29 @@ void addCombined(stats::Observations& observations, Eigen::Index vertex, const s
 {
     if (constraints.empty())
         return;
-    if (constraints.size() == 1 && constraints[0].rows == 3 && constraints[0].noiseVariance.isZero()) {
+    if (constraints.size() == 1 && constraints[0].rows == 3) {
         // A 3D constraint's rows are orthonormal: its position is A^T b.
         observations.addVertex(vertex, constraints[0].A.transpose() * constraints[0].b);
         return;
     }
     if (constraints.size() == 1 && constraints[0].rows == 2) {
-        observations.addProjectedVertex(
-            vertex, constraints[0].A.topRows<2>(), constraints[0].b.head<2>(), Eigen::Vector2d(constraints[0].noiseVariance.head<2>()));
+        observations.addProjectedVertex(vertex, constraints[0].A.topRows<2>(), constraints[0].b.head<2>());
         return;
     }
     if (constraints.size() == 1 && constraints[0].rows == 1) {
-        observations.addVertexAlong(vertex, constraints[0].A.row(0).transpose(), constraints[0].b[0], constraints[0].noiseVariance[0]);
+        observations.addVertexAlong(vertex, constraints[0].A.row(0).transpose(), constraints[0].b[0]);
         return;
     }
     int rows = 0;
-    bool noisy = false;
-    for (const VertexConstraint& c : constraints) {
+    for (const VertexConstraint& c : constraints)
         rows += c.rows;
-        noisy = noisy || !c.noiseVariance.head(c.rows).isZero();
-    }
     Eigen::MatrixXd A(rows, 3);
-    Eigen::VectorXd b(rows), noise(rows);
+    Eigen::VectorXd b(rows);
     int r = 0;
     for (const VertexConstraint& c : constraints) {
         A.middleRows(r, c.rows) = c.A.topRows(c.rows);
         b.segment(r, c.rows) = c.b.head(c.rows);
-        noise.segment(r, c.rows) = c.noiseVariance.head(c.rows);
         r += c.rows;
-    }
-    if (noisy) {
-        // Weighted least squares: the information A^T W A, W = 1 / (noise + s0^2) per row (s0
-        // keeps a noiseless row's weight finite), decomposed into orthonormal directions; each
-        // spanned direction is measured with the variance its information leaves, less s0^2.
-        constexpr double s0 = 0.01; // (0.1 mm)^2
-        const Eigen::VectorXd w = (noise.array() + s0).inverse();
-        const Eigen::Matrix3d info = A.transpose() * w.asDiagonal() * A;
-        const Eigen::Vector3d rhs = A.transpose() * w.cwiseProduct(b);
-        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(info);
-        const Eigen::Vector3d lambda = eig.eigenvalues(); // ascending
-        const double top = lambda[2];
-        std::vector<int> spanned;
-        for (int k = 2; k >= 0; --k)
-            if (lambda[k] > kRankTolerance * kRankTolerance * top)
-                spanned.push_back(k);
-        auto valueAlong = [&](int k) { return eig.eigenvectors().col(k).dot(rhs) / lambda[k]; };
-        auto varianceAlong = [&](int k) { return std::max(0.0, 1.0 / lambda[k] - s0); };
-        if (spanned.size() == 1) {
-            const int k = spanned[0];
-            observations.addVertexAlong(vertex, eig.eigenvectors().col(k), valueAlong(k), varianceAlong(k));
-        } else {
-            // Three directions become a 3D position with their mean variance (a block of one
-            // vertex carries one noise per row of the identity); two a projected vertex.
-            if (spanned.size() == 3) {
-                Eigen::Vector3d x = Eigen::Vector3d::Zero();
-                double v = 0;
-                for (int k : spanned) {
-                    x += eig.eigenvectors().col(k) * valueAlong(k);
-                    v += varianceAlong(k) / 3.0;
-                }
-                observations.addVertex(vertex, x, v);
-            } else {
-                Eigen::Matrix<double, 2, 3> P;
-                Eigen::Vector2d y, n;
-                for (int i = 0; i < 2; ++i) {
-                    P.row(i) = eig.eigenvectors().col(spanned[static_cast<std::size_t>(i)]).transpose();
-                    y[i] = valueAlong(spanned[static_cast<std::size_t>(i)]);
-                    n[i] = varianceAlong(spanned[static_cast<std::size_t>(i)]);
-                }
-                observations.addProjectedVertex(vertex, P, y, n);
-            }
-        }
-        return;
     }
     const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeThinU | Eigen::ComputeThinV);
     const Eigen::VectorXd& s = svd.singularValues();
@@ -191,9 +141,6 @@ void TrackingModel::apply(const StrokeReading& reading, const ApplyOptions& opti
             && (!o.acrossStroke.allFinite() || std::abs(o.acrossStroke.norm() - 1) > 1e-6
                 || (planeValid && std::abs(viewAxisOf(P).dot(o.acrossStroke)) > 1e-6)))
             fail("tracking: observations[", i, "].acrossStroke of vertex ", o.vertex, " is not a unit vector in the view plane");
-        if (!std::isfinite(o.noiseMm) || o.noiseMm < 0 || !std::isfinite(o.alongNoiseMm) || o.alongNoiseMm < 0)
-            fail("tracking: observations[", i, "] of vertex ", o.vertex, ": noiseMm ", o.noiseMm, " and alongNoiseMm ", o.alongNoiseMm,
-                " must be finite values >= 0");
         if (!seen.insert(o.vertex).second)
             fail("tracking: observations[", i, "]: vertex ", o.vertex, " is observed twice by one stroke");
     }
@@ -216,21 +163,15 @@ void TrackingModel::apply(const StrokeReading& reading, const ApplyOptions& opti
         VertexConstraint c;
         c.stroke = stroke;
         c.viewAxis = axis;
-        c.noiseVariance.setConstant(o.noiseMm * o.noiseMm);
         if (!o.acrossStroke.isZero()) {
             // Across the stroke, and the depth unless the depth is left to the model: rows
             // orthonormal because acrossStroke lies in the view plane.
-            // ... and along it, with its own noise, when alongNoiseMm asks for it.
-            c.A.setZero();
+            c.rows = o.viewPlaneOnly ? 1 : 2;
             c.A.row(0) = o.acrossStroke.transpose();
-            c.rows = 1;
-            if (o.alongNoiseMm > 0) {
-                c.A.row(c.rows) = axis.cross(o.acrossStroke).transpose();
-                c.noiseVariance[c.rows] = o.alongNoiseMm * o.alongNoiseMm;
-                ++c.rows;
-            }
-            if (!o.viewPlaneOnly)
-                c.A.row(c.rows++) = axis.transpose();
+            c.A.row(1) = axis.transpose();
+            c.A.row(2).setZero();
+            if (c.rows == 1)
+                c.A.row(1).setZero();
             c.b = c.A * o.position;
         } else if (o.viewPlaneOnly) {
             c.rows = 2;

@@ -59,9 +59,6 @@ struct VertexConstraint {
     int stroke = 0;                                      ///< 1-based number of the stroke that made it
     Eigen::Vector3d viewAxis = Eigen::Vector3d::UnitZ(); ///< towards the viewer of that stroke
     bool mirrored = false;                               ///< made by the symmetry option
-    /// mm^2 per row (VertexObservation::noiseMm, or alongNoiseMm for the row along the stroke,
-    /// squared).
-    Eigen::Vector3d noiseVariance = Eigen::Vector3d::Zero();
 };
 
 /// How one stroke is applied.
@@ -116,8 +113,6 @@ private:
 };
 
 /// The measurement of one vertex from its constraints (step 2): appended to `observations`.
-/// Rows with noise are weighted by 1 / (noise + (0.1 mm)^2) in the least squares, and the
-/// combined measurement carries the noise its weights leave in each direction it spans.
 void addCombined(stats::Observations& observations, Eigen::Index vertex, const std::vector<VertexConstraint>& constraints);
 
 } // namespace facesketch::sketch

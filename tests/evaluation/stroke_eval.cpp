@@ -82,6 +82,15 @@ TEST_CASE("stroke_eval: the diagnostics: mapped vertices at their true positions
     CHECK(read.within1Mm <= read.within3Mm);
     CHECK(read.within3Mm > 0);
     CHECK(read.within3Mm <= 1);
+    // The thesis' observations pin the stroke point, not across the stroke: no across error.
+    CHECK(read.acrossMm == 0);
+    // The defaults pin across the stroke: that error is one component of the error in the view
+    // plane, so smaller than it (the rest lies along the stroke).
+    o.oracle = evaluation::StrokeOracle::None;
+    o.params = {};
+    const evaluation::StrokeEvalRecord across = evaluation::evaluateStrokes(test::device(), d, o).records.at(0);
+    CHECK(across.acrossMm > 0);
+    CHECK(across.acrossMm < across.planeMm);
     CHECK(evaluation::parseStrokeOracle("true-depth") == evaluation::StrokeOracle::TrueDepth);
     REQUIRE_THROWS_WITH(evaluation::parseStrokeOracle("truth"), Catch::Contains("'truth'"));
     REQUIRE_NO_VALIDATION_MESSAGES();

@@ -88,30 +88,29 @@ TEST_CASE("mapper: parameters are set by name, and the thesis' set keeps the the
     MapperParams p;
     setMapperParam(p, "sigmaDTau=2");
     setMapperParam(p, "maxCandidatesPerPoint=48");
-    setMapperParam(p, "vertexStates=1");
-    setMapperParam(p, "observationNoiseMm=0.5");
+    setMapperParam(p, "useSkeleton=0");
+    setMapperParam(p, "sigmaC=4.5");
     CHECK(p.sigmaDTau == 2.0);
     CHECK(p.maxCandidatesPerPoint == 48);
-    CHECK(p.vertexStates);
-    CHECK(p.observationNoiseMm == 0.5);
+    CHECK(!p.useSkeleton);
+    CHECK(p.sigmaC == 4.5);
     const MapperParams before = p;
     REQUIRE_THROWS_WITH(setMapperParam(p, "sigmaQ=1"), Catch::Contains("'sigmaQ' is unknown"));
     REQUIRE_THROWS_WITH(setMapperParam(p, "sigmaC"), Catch::Contains("NAME=VALUE"));
     REQUIRE_THROWS_WITH(setMapperParam(p, "sigmaC=three"), Catch::Contains("'three' is not a number"));
     REQUIRE_THROWS_WITH(setMapperParam(p, "maxCandidatesPerPoint=2.5"), Catch::Contains("whole number"));
-    REQUIRE_THROWS_WITH(setMapperParam(p, "vertexStates=2"), Catch::Contains("0 or 1"));
+    REQUIRE_THROWS_WITH(setMapperParam(p, "useSkeleton=2"), Catch::Contains("0 or 1"));
     CHECK(p.sigmaC == before.sigmaC);
     CHECK(p.maxCandidatesPerPoint == 48);
-    setMapperParam(p, "alongStrokeNoiseMm=-1");
-    REQUIRE_THROWS_WITH(p.validate(), Catch::Contains("alongStrokeNoiseMm = -1"));
+    setMapperParam(p, "unreachableHops=-1");
+    REQUIRE_THROWS_WITH(p.validate(), Catch::Contains("unreachableHops = -1"));
 
     // 4.8.5's sigma_d = 2 tau and 4.6.2's pinned observations in the thesis' set.
     const MapperParams thesis = MapperParams::thesis();
     CHECK(thesis.sigmaDTau == 2.0);
     CHECK(!thesis.viewPlaneOnly);
     CHECK(!thesis.acrossStrokeOnly);
-    CHECK(thesis.observationNoiseMm == 0.0);
-    CHECK(!thesis.vertexStates);
+    CHECK(thesis.maxCandidatesPerPoint == 48);
 }
 
 TEST_CASE("mapper: the direction across a stroke is perpendicular to it in the view plane")

@@ -283,50 +283,6 @@ TEST_CASE("tracking: an across-stroke observation pins the vertex across the str
     REQUIRE(sameState(tracking.state(), before));
 }
 
-TEST_CASE("tracking: noisy observations and a noisy row along the stroke reach the face model with their noise")
-{
-    const auto& t = test::trainedSynth();
-    const auto lips = contourVertices("lip");
-    StrokeReading r = reading(lips, 0, kFront);
-    for (VertexObservation& o : r.observations) {
-        o.viewPlaneOnly = true;
-        o.acrossStroke = Eigen::Vector3d(0, 1, 0);
-    }
-    TrackingModel pinned(t.model);
-    pinned.apply(r);
-    CHECK(!pinned.observations().noisy());
-    for (VertexObservation& o : r.observations)
-        o.alongNoiseMm = 2.0;
-    TrackingModel along(t.model);
-    along.apply(r);
-    const auto& c = along.state().constraints[lips[0]];
-    REQUIRE(c.size() == 1);
-    REQUIRE(c[0].rows == 2);
-    CHECK(std::abs(c[0].A.row(1).dot(Eigen::Vector3d(1, 0, 0))) == Approx(1.0).margin(1e-12)); // along a horizontal stroke
-    CHECK(c[0].noiseVariance[0] == 0.0);
-    CHECK(c[0].noiseVariance[1] == 4.0);
-    CHECK(along.observations().noisy());
-    CHECK(along.observations().size() == 2 * static_cast<Eigen::Index>(r.observations.size()));
-    // The along row informs the face: it differs from the across-only one and still moves the
-    // lips towards the face they trace.
-    CHECK((along.face() - pinned.face()).cwiseAbs().maxCoeff() > 1e-6);
-    CHECK(meanError(along.face(), 0, lips) < meanError(t.model.meanFace, 0, lips));
-
-    // A second view's noisy constraints combine with the first by weighted least squares.
-    StrokeReading side = reading(lips, 0, kProfile);
-    for (VertexObservation& o : side.observations)
-        o.noiseMm = 0.5;
-    along.apply(side);
-    CHECK(along.observations().noisy());
-    CHECK(along.face().allFinite());
-
-    StrokeReading bad = r;
-    bad.observations[1].alongNoiseMm = -1;
-    const TrackingState before = along.state();
-    REQUIRE_THROWS_WITH(along.apply(bad), Catch::Contains("observations[1]") && Catch::Contains("alongNoiseMm -1"));
-    REQUIRE(sameState(along.state(), before));
-}
-
 TEST_CASE("tracking: bad readings throw and leave the state exactly as it was")
 {
     const auto& t = test::trainedSynth();
