@@ -16,6 +16,19 @@ double checkedNoise(double noiseVariance, const char* where, Eigen::Index vertex
         fail(where, ": the noise variance ", noiseVariance, " of vertex ", vertex, " is not a finite value >= 0");
     return noiseVariance;
 }
+
+// The o-vector that stacks rowsOf(block) (a vector of block.rows values) over the measurement
+// blocks in order: values, noise variances and residuals are all laid out this way.
+template <class Blocks, class RowsOf> Eigen::VectorXd stackRows(const Blocks& blocks, Eigen::Index size, RowsOf rowsOf)
+{
+    Eigen::VectorXd out(size);
+    Eigen::Index row = 0;
+    for (const auto& b : blocks) {
+        out.segment(row, b.rows) = rowsOf(b);
+        row += b.rows;
+    }
+    return out;
+}
 } // namespace
 
 void Observations::addVertex(Eigen::Index vertex, const Eigen::Vector3d& xyz, double noiseVariance)
@@ -92,13 +105,7 @@ bool Observations::noisy() const
 
 Eigen::VectorXd Observations::noiseVariances() const
 {
-    Eigen::VectorXd n(size_);
-    Eigen::Index row = 0;
-    for (const Block& b : blocks_) {
-        n.segment(row, b.rows) = b.noise.head(b.rows);
-        row += b.rows;
-    }
-    return n;
+    return stackRows(blocks_, size_, [](const Block& b) { return b.noise.head(b.rows); });
 }
 
 void Observations::addCoordinate(Eigen::Index index, double value)
@@ -159,24 +166,14 @@ Eigen::MatrixXd Observations::denseP(Eigen::Index d) const
 
 Eigen::VectorXd Observations::values() const
 {
-    Eigen::VectorXd y(size_);
-    Eigen::Index row = 0;
-    for (const Block& b : blocks_) {
-        y.segment(row, b.rows) = b.y.head(b.rows);
-        row += b.rows;
-    }
-    return y;
+    return stackRows(blocks_, size_, [](const Block& b) { return b.y.head(b.rows); });
 }
 
 Eigen::VectorXd Observations::residual(const Eigen::VectorXd& a) const
 {
-    Eigen::VectorXd r(size_);
-    Eigen::Index row = 0;
-    for (const Block& b : blocks_) {
-        r.segment(row, b.rows) = b.y.head(b.rows) - b.P.topLeftCorner(b.rows, b.width) * a.segment(b.first, b.width);
-        row += b.rows;
-    }
-    return r;
+    return stackRows(blocks_, size_, [&a](const Block& b) -> Eigen::VectorXd {
+        return b.y.head(b.rows) - b.P.topLeftCorner(b.rows, b.width) * a.segment(b.first, b.width);
+    });
 }
 
 Eigen::MatrixXd Observations::apply(const Eigen::MatrixXd& A) const
