@@ -107,8 +107,6 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
         b.height = 0.45 * rng.normal();
         p.detail.push_back(b);
     }
-    // Drawn last so the parameters above keep their draws from before it was added (issue 16).
-    p.paranasalHollow = n(4.5, 1.0); // ICT
     return p;
 }
 

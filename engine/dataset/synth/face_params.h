@@ -10,7 +10,7 @@
 // Age (uniform 20..65 years) thins the lips, lengthens and drops the nose and narrows the
 // eye opening; sex shifts means and brow, jaw and chin prominence.
 // The means of parameters that no Farkas norm fixes (brow height, cheekbone prominence, nose
-// lobule, alae and tip, the paranasal hollow) were moved towards the ICT-FaceKit mean face by
+// lobule, alae and tip) were moved towards the ICT-FaceKit mean face by
 // `facesketch eval realism` (issue 16, docs/realism.md "Calibration"); the Farkas measures keep
 // the norms even where ICT differs (en-en, al-al: docs/realism.md).
 //
@@ -84,10 +84,9 @@ struct FaceParams {
     double cheekboneWidth = 136; ///< zy-zy
     double cheekboneHeight = 4;  ///< radial prominence
     double cheekFullness = 2;
-    double paranasalHollow = 4.5; ///< mm the cheek beside the nose and under the orbit lies back
-    double jawWidth = 102;        ///< go-go
-    double jawAngle = 0;          ///< squareness (-1..1 roughly)
-    double chinProjection = 0;    ///< pg forward of the sn-vertical
+    double jawWidth = 102;     ///< go-go
+    double jawAngle = 0;       ///< squareness (-1..1 roughly)
+    double chinProjection = 0; ///< pg forward of the sn-vertical
     double chinWidth = 14;
     double chinHeight = 0; ///< extra chin boss height (mm)
     double neckWidth = 110;
