@@ -140,16 +140,21 @@ TEST_CASE("simulate: jitter has the asked standard deviation, overshoot leaves t
     const Simulation c = simulateStrokes(in.face, in.mean, in.contours, in.flags, other);
     REQUIRE((c.strokes.size() != b.strokes.size() || c.strokes.back().stroke.points.back().x != b.strokes.back().stroke.points.back().x));
 
-    // Overshooting strokes reach past the ends of the open contours.
+    // Overshooting strokes reach past the ends of the open contours. Each end of a piece
+    // overshoots with probability 1/2, so one seed's upper lip may have no overshooting end
+    // at all (seeds 1 and 6 on the calibrated synthetic faces of issue 16): look over 8 seeds.
     SimulateOptions over = clean;
     over.overshoot = 0.3;
-    const Simulation d = simulateStrokes(in.face, in.mean, in.contours, in.flags, over);
-    const Camera camera = orbitCamera(d.strokes.front().stroke.view);
     double furthest = 0;
-    for (const SimulatedStroke& s : d.strokes)
-        if (s.feature == "lip_upper_outer")
-            for (const StrokePoint& p : s.stroke.points)
-                furthest = std::max(furthest, distanceToPath({ p.x, p.y }, projected(in.contours.at(s.feature), in.face, camera)));
+    for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+        over.seed = seed;
+        const Simulation d = simulateStrokes(in.face, in.mean, in.contours, in.flags, over);
+        const Camera camera = orbitCamera(d.strokes.front().stroke.view);
+        for (const SimulatedStroke& s : d.strokes)
+            if (s.feature == "lip_upper_outer")
+                for (const StrokePoint& p : s.stroke.points)
+                    furthest = std::max(furthest, distanceToPath({ p.x, p.y }, projected(in.contours.at(s.feature), in.face, camera)));
+    }
     REQUIRE(furthest > 2.0);
 }
 

@@ -100,9 +100,11 @@ Frame makeFrame(const FaceParams& p)
 
     // Midline profile without nose, lips and chin boss: (y, z) pairs top to bottom.
     const std::vector<std::pair<double, double>> profile = {
-        { f.yN + 100, f.zf - 52 - 0.6 * slope },
-        { f.yN + 72, f.zf - 24 - 0.4 * slope },
-        { f.yN + 45, f.zf - 8 - 0.2 * slope },
+        // The forehead knots were moved forward (by 16, 11 and 5 mm) towards the ICT-FaceKit
+        // mean face (issue 16, docs/realism.md "Calibration").
+        { f.yN + 100, f.zf - 36 - 0.6 * slope },
+        { f.yN + 72, f.zf - 13 - 0.4 * slope },
+        { f.yN + 45, f.zf - 3 - 0.2 * slope },
         { f.yN + 22, f.zf - 0.5 + 0.3 * p.nasionDepth },
         { f.yN + 11, f.zf + p.nasionDepth },
         { f.yN, f.zf },

@@ -9,6 +9,10 @@
 // standard normal, so each measure keeps the norm's mean and SD while sizes correlate.
 // Age (uniform 20..65 years) thins the lips, lengthens and drops the nose and narrows the
 // eye opening; sex shifts means and brow, jaw and chin prominence.
+// The means of parameters that no Farkas norm fixes (brow height, cheekbone prominence, nose
+// lobule, alae and tip) were moved towards the ICT-FaceKit mean face by
+// `facesketch eval realism` (issue 16, docs/realism.md "Calibration"); the Farkas measures keep
+// the norms even where ICT differs (en-en, al-al: docs/realism.md).
 //
 // Randomness: the portable core/random.h generator (BoxMuller::RedrawZero), so identical seeds
 // give identical faces on every standard library.

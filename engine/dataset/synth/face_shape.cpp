@@ -306,7 +306,9 @@ Vertices synthesizeFace(const FaceTopology& t, const FaceParams& params, const F
         else
             theta = tm;
         const double side = smoothstep(0.5, 1.6, std::abs(theta));
-        const double top = lerp(f.phiTopFront, 0.42, side);
+        // At the sides the top row stays at least 0.12 rad above the brow row, so faces with
+        // high brows keep their top rows in order.
+        const double top = lerp(f.phiTopFront, std::max(0.42, f.phiBrow + 0.12), side);
         const double bottom = lerp(f.phiBottomFront, std::min(-1.0, f.phiGn - 0.15), smoothstep(0.4, 1.3, std::abs(theta)));
         double phi;
         if (row <= K[1])
