@@ -43,14 +43,14 @@ Document::Document(sketch::SessionReplayer& replayer, const std::filesystem::pat
         fail("gui: the document needs a replayer with no stroke applied");
 }
 
-sketch::ReplayOutcome Document::addStroke(const sketch::StrokeAction& action)
+sketch::ReplayOutcome Document::addStroke(sketch::StrokeAction action)
 {
     sketch::ReplayOutcome out = replayer_.apply(action);
     if (out.kind != sketch::ReplayOutcome::Kind::Applied)
         return out;
     // The replayer forgot its undone strokes when it applied this one, so the document does too.
     dropRedo();
-    strokes_.push_back({ action, out.reading });
+    strokes_.push_back({ std::move(action), out.reading });
     history_.push_back(Step::Shape);
     ++applied_;
     const std::uint64_t previousRevision = revision_;

@@ -55,8 +55,9 @@ public:
     /// PinsNothing or Refused: nothing changes (the outcome says why). Throws Error as
     /// SessionReplayer::apply does (nothing changed), or naming the pose action the new neutral
     /// cannot replay (the stroke is taken back; undone actions are forgotten, as the replayer
-    /// forgot them).
-    sketch::ReplayOutcome addStroke(const sketch::StrokeAction& action);
+    /// forgot them). Taken by value: `action` may be one of this document's own undone strokes
+    /// (strokes()[i].action), which forgetting the undone actions destroys.
+    sketch::ReplayOutcome addStroke(sketch::StrokeAction action);
 
     /// Undoes the last action in effect (or the open that replaced earlier work, see above);
     /// false (nothing changed) if there is none.
