@@ -275,15 +275,11 @@ void Window::release()
     if (imguiPool_)
         vkDestroyDescriptorPool(device_.device, imguiPool_, nullptr);
     imguiPool_ = VK_NULL_HANDLE;
-    if (renderPass_)
-        vkDestroyRenderPass(device_.device, renderPass_, nullptr);
-    renderPass_ = VK_NULL_HANDLE;
-    if (uiPass_)
-        vkDestroyRenderPass(device_.device, uiPass_, nullptr);
-    uiPass_ = VK_NULL_HANDLE;
-    if (reducedPass_)
-        vkDestroyRenderPass(device_.device, reducedPass_, nullptr);
-    reducedPass_ = VK_NULL_HANDLE;
+    for (VkRenderPass* pass : { &renderPass_, &uiPass_, &reducedPass_ }) {
+        if (*pass)
+            vkDestroyRenderPass(device_.device, *pass, nullptr);
+        *pass = VK_NULL_HANDLE;
+    }
     loop_.reset();
     if (device_.device)
         gpu::destroyDevice(device_);
