@@ -7,6 +7,9 @@ packages=(
   cmake g++ make pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools spirv-tools
   libglfw3-dev libglm-dev libeigen3-dev libimgui-dev catch2
+  # gui: the window's MIT-SHM presentation (app/gui/x11_shm_sink.cpp): Xlib, Xext, and Xrandr for
+  # GLFW's native X11 header (glfw3native.h includes it)
+  libx11-dev libxext-dev libxrandr-dev
   libtinyobjloader-dev nlohmann-json3-dev libcli11-dev libstb-dev libmeshoptimizer-dev
   xvfb xauth clang-format
   # gui: real X input events for the app's tests (tests/gui/*.sh); python3 checks their results

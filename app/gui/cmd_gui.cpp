@@ -51,6 +51,7 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <optional>
 #include <span>
 #include <sstream>
@@ -72,6 +73,7 @@ struct GuiCommand {
     int width = 1280, height = 800;
     int samples = 4;
     double motionScale = 0.5; ///< the scene's resolution while the view moves (1: always full)
+    gui::Present present = gui::Present::Auto;
     double autosaveSeconds = 30;
     bool restore = false;
     bool printGuides = false;
@@ -317,8 +319,9 @@ private:
 
 App::App(const GuiCommand& c)
     : c_(c)
-    , window_({ c.width, c.height, "FaceSketch", c.samples })
+    , window_({ c.width, c.height, "FaceSketch", c.samples, c.present })
 {
+    std::cout << "gui: presenting through " << window_.presentPath() << std::endl;
     RenderTargetFormat target;
     target.color = window_.colorFormat();
     target.samples = window_.samples();
@@ -1667,6 +1670,13 @@ void addGuiCommand(CLI::App& root)
            "without MSAA, scaled up; full resolution as soon as the view rests (1: always full)")
         ->check(CLI::Range(0.25, 1.0))
         ->capture_default_str();
+    const std::map<std::string, gui::Present> presents { { "auto", gui::Present::Auto }, { "swapchain", gui::Present::Swapchain },
+        { "shm", gui::Present::Shm } };
+    cmd->add_option("--present", c->present,
+           "How frames reach the window: 'swapchain' (Vulkan's), 'shm' (X11 shared memory: for lavapipe, whose swapchain sends "
+           "every frame through the X socket) or 'auto' (shm when the device draws on the CPU and the X server can attach it)")
+        ->transform(CLI::CheckedTransformer(presents))
+        ->default_str("auto");
     cmd->add_option("--autosave-seconds", c->autosaveSeconds, "Autosave interval")->check(CLI::PositiveNumber)->capture_default_str();
     cmd->add_flag("--restore", c->restore, "Restore the recovery file without asking");
     cmd->add_flag("--overlay", c->overlay, "Start with the sketchability overlay on");

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "gpu/buffers.h"
+#include "gui/x11_shm_sink.h"
 
 #define GLFW_INCLUDE_NONE
 #define GLFW_INCLUDE_VULKAN
@@ -73,19 +74,14 @@ Window::Window(const WindowOptions& options)
         device_ = gpu::createDevice(instance_, gpu::choosePhysicalDevice(instance_, surface_), lo);
         int w = 0, h = 0;
         glfwGetFramebufferSize(window_, &w, &h);
-        // Scaling a reduced scene up into the swapchain image needs it as a blit destination and
+        createLoop(options.present, { std::uint32_t(w), std::uint32_t(h) });
+        // Scaling a reduced scene up into the frame's image needs it as a blit destination and
         // linear filtering of its format (lavapipe has both; without them every frame is full size).
-        VkSurfaceCapabilitiesKHR caps {};
-        VK_CHECK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(device_.physical, surface_, &caps));
-        gpu::SwapchainOptions so;
-        if (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT)
-            so.extraUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-        loop_ = std::make_unique<gpu::FrameLoop>(device_, surface_, VkExtent2D { std::uint32_t(w), std::uint32_t(h) }, so);
         VkFormatProperties fp {};
         vkGetPhysicalDeviceFormatProperties(device_.physical, colorFormat(), &fp);
         const VkFormatFeatureFlags blit
             = VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
-        canReduce_ = so.extraUsage != 0 && (fp.optimalTilingFeatures & blit) == blit;
+        canReduce_ = (loop_->swapchain().usage & VK_IMAGE_USAGE_TRANSFER_DST_BIT) && (fp.optimalTilingFeatures & blit) == blit;
 
         // The scene's pass: colour (MSAA resolved into a one-sample image, or that image itself)
         // and depth. The one-sample image is the swapchain image, or while the view moves the
@@ -190,20 +186,24 @@ Window::Window(const WindowOptions& options)
         ImGui::GetIO().FontGlobalScale = scale;
         // Our callbacks see each event first and hand it on to ImGui.
         glfwSetWindowUserPointer(window_, this);
+        // Positions come from the events themselves, not from glfwGetCursorPos: on X11 that asks
+        // the server where the pointer is now, so when a slow frame leaves several motion events
+        // queued, all of them (and the button release after them) would read the pointer's latest
+        // position and a stroke drawn in that time would collapse to a point or two.
         glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int mods) {
             auto* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
             double x = 0, y = 0;
-            self->cursor(x, y);
+            self->eventCursor(x, y);
             if (self->events_.mouseButton)
                 self->events_.mouseButton(button, action, mods, x, y);
             ImGui_ImplGlfw_MouseButtonCallback(w, button, action, mods);
         });
-        glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double, double) {
+        glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double screenX, double screenY) {
             auto* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
-            double x = 0, y = 0;
-            self->cursor(x, y);
+            const double s = self->contentScale();
+            self->lastEvent_ = { screenX * s, screenY * s };
             if (self->events_.cursor)
-                self->events_.cursor(x, y);
+                self->events_.cursor(self->lastEvent_->x, self->lastEvent_->y);
         });
         glfwSetScrollCallback(window_, [](GLFWwindow* w, double dx, double dy) {
             auto* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
@@ -322,6 +322,39 @@ void Window::cursor(double& x, double& y) const
     y *= s;
 }
 
+void Window::createLoop(Present present, VkExtent2D size)
+{
+    // A device that draws on the CPU (lavapipe) presents through Mesa's software WSI, which sends
+    // each frame through the X socket; MIT-SHM hands it over in shared memory instead
+    // (gui/x11_shm_sink.h). A GPU's swapchain is the fast path there.
+    const bool cpuDevice = device_.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    std::string whyNot;
+    if (present == Present::Shm || (present == Present::Auto && cpuDevice)) {
+        if (auto sink = createX11ShmSink(window_, size, whyNot)) {
+            loop_ = std::make_unique<gpu::FrameLoop>(device_, std::move(sink), size);
+            presentPath_ = "MIT-SHM";
+            return;
+        }
+        if (present == Present::Shm)
+            fail("gui: cannot present by MIT-SHM: ", whyNot);
+    }
+    VkSurfaceCapabilitiesKHR caps {};
+    VK_CHECK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(device_.physical, surface_, &caps));
+    gpu::SwapchainOptions so;
+    if (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT)
+        so.extraUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    loop_ = std::make_unique<gpu::FrameLoop>(device_, surface_, size, so);
+    presentPath_ = whyNot.empty() ? "swapchain" : "swapchain (MIT-SHM: " + whyNot + ")";
+}
+
+void Window::eventCursor(double& x, double& y) const
+{
+    if (!lastEvent_)
+        return cursor(x, y);
+    x = lastEvent_->x;
+    y = lastEvent_->y;
+}
+
 bool Window::shouldClose() const
 {
     return glfwWindowShouldClose(window_);
@@ -405,7 +438,7 @@ void Window::createTargets()
     if (sc.usage & VK_IMAGE_USAGE_TRANSFER_SRC_BIT)
         t->readback = gpu::createBuffer(device_, VkDeviceSize(sc.extent.width) * sc.extent.height * 4, 0, gpu::MemoryUse::Readback);
     targets_ = std::move(t);
-    targetsFor_ = sc.swapchain;
+    targetsFor_ = loop_->imagesGeneration();
 }
 
 void Window::createReduced(VkExtent2D extent)
@@ -447,7 +480,7 @@ bool Window::begin(gpu::Frame& frame, const float background[4], double sceneSca
     glfwGetFramebufferSize(window_, &w, &h);
     if (!loop_->beginFrame({ std::uint32_t(w), std::uint32_t(h) }, frame))
         return false;
-    if (!targets_ || targetsFor_ != loop_->swapchain().swapchain) {
+    if (!targets_ || targetsFor_ != loop_->imagesGeneration()) {
         // The swapchain was recreated: the old targets may still be used by a frame in flight.
         if (targets_) {
             std::shared_ptr<Targets> old(std::move(targets_));

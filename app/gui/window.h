@@ -21,17 +21,28 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 struct GLFWwindow;
 
 namespace facesketch::gui {
 
+/// How finished frames reach the window.
+enum class Present {
+    /// MIT-SHM (gui/x11_shm_sink.h) when the device draws on the CPU and the X server attaches the
+    /// segment, else the swapchain.
+    Auto,
+    Swapchain, ///< the Vulkan swapchain (VK_KHR_swapchain), as on any GPU
+    Shm,       ///< MIT-SHM or an error saying why not
+};
+
 struct WindowOptions {
     int width = 1280; ///< framebuffer pixels asked for (the window is sized so on HiDPI too)
     int height = 800;
     std::string title = "FaceSketch";
     int samples = 4; ///< 1 or 4
+    Present present = Present::Auto;
 };
 
 /// Input for the app, called from glfwPollEvents before ImGui sees the event. Positions in
@@ -67,7 +78,7 @@ public:
     double contentScale() const;
     bool shouldClose() const;
     void setEvents(WindowEvents events) { events_ = std::move(events); }
-    /// The cursor in framebuffer pixels.
+    /// The cursor in framebuffer pixels, where it is now (a round trip to the X server).
     void cursor(double& x, double& y) const;
     void requestClose();
 
@@ -92,6 +103,8 @@ public:
     /// Waits for every frame in flight (before replacing what they draw, at exit).
     void waitIdle();
     gpu::FrameLoop& loop() { return *loop_; }
+    /// How frames reach the window, for the log: "swapchain", "MIT-SHM" or "swapchain (MIT-SHM: <why not>)".
+    const std::string& presentPath() const { return presentPath_; }
 
 private:
     void release();
@@ -99,7 +112,17 @@ private:
     void createReduced(VkExtent2D extent);
     void destroyTargets();
     GLFWwindow* window_ = nullptr;
+    /// The cursor at the last motion event handled, so a button event queued behind it gets its
+    /// own position rather than the pointer's latest one.
+    void eventCursor(double& x, double& y) const;
+    /// Chooses how frames reach the window (WindowOptions::present) and makes the frame loop.
+    void createLoop(Present present, VkExtent2D size);
+
     WindowEvents events_;
+    struct CursorEvent {
+        double x, y;
+    };
+    std::optional<CursorEvent> lastEvent_;
     gpu::Instance instance_;
     VkSurfaceKHR surface_ = VK_NULL_HANDLE;
     gpu::Device device_;
@@ -113,7 +136,8 @@ private:
     VkExtent2D sceneExtent_ {};
     VkDescriptorPool imguiPool_ = VK_NULL_HANDLE;
     std::unique_ptr<Targets> targets_;
-    VkSwapchainKHR targetsFor_ = VK_NULL_HANDLE;
+    std::uint64_t targetsFor_ = 0; ///< the loop's imagesGeneration() the targets were made for
+    std::string presentPath_;
     bool imguiFrame_ = false;
     bool imguiGlfw_ = false, imguiVulkan_ = false;
     bool captured_ = false;

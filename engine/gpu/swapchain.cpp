@@ -154,22 +154,79 @@ FrameLoop::FrameLoop(Device& device, VkSurfaceKHR surface, VkExtent2D framebuffe
     : device_(device)
 {
     swapchain_ = createSwapchain(device, surface, framebufferSize, options);
+    generation_ = 1;
+    createSlots();
+}
+
+FrameLoop::FrameLoop(Device& device, std::unique_ptr<FrameSink> sink, VkExtent2D framebufferSize, const SwapchainOptions& options)
+    : device_(device)
+    , sink_(std::move(sink))
+{
+    if (!sink_)
+        fail("FrameLoop: no frame sink");
+    const VkFormat format = sink_->format();
+    if (format != VK_FORMAT_B8G8R8A8_UNORM && format != VK_FORMAT_R8G8B8A8_UNORM)
+        fail("FrameLoop: a frame sink must take B8G8R8A8_UNORM or R8G8B8A8_UNORM, not format ", int(format));
+    swapchain_.format = format;
+    swapchain_.options = options;
+    swapchain_.usage
+        = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | options.extraUsage;
+    try {
+        if (framebufferSize.width > 0 && framebufferSize.height > 0)
+            createSinkImages(framebufferSize);
+    } catch (...) {
+        destroySinkImages();
+        throw;
+    }
+    createSlots();
+}
+
+void FrameLoop::createSinkImages(VkExtent2D size)
+{
+    for (std::uint32_t i = 0; i < framesInFlight; ++i) {
+        sinkImages_.push_back(
+            createImage(device_, size.width, size.height, swapchain_.format, swapchain_.usage, VK_IMAGE_ASPECT_COLOR_BIT));
+        sinkPixels_.push_back(createBuffer(device_, VkDeviceSize(size.width) * size.height * 4, 0, MemoryUse::Readback));
+        if (!sinkPixels_.back().mapped)
+            fail("FrameLoop: the device has no host-visible memory for a frame sink");
+        swapchain_.images.push_back(sinkImages_.back().image);
+        swapchain_.views.push_back(sinkImages_.back().view);
+    }
+    swapchain_.extent = size;
+    ++generation_;
+}
+
+void FrameLoop::destroySinkImages()
+{
+    for (Image& image : sinkImages_)
+        destroyImage(device_, image);
+    for (Buffer& buffer : sinkPixels_)
+        destroyBuffer(device_, buffer);
+    sinkImages_.clear();
+    sinkPixels_.clear();
+    swapchain_.images.clear();
+    swapchain_.views.clear();
+    swapchain_.extent = {};
+}
+
+void FrameLoop::createSlots()
+{
     try {
         for (Slot& slot : slots_) {
             auto pool = makeStruct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
             pool.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-            pool.queueFamilyIndex = device.queueFamily;
-            VK_CHECK(vkCreateCommandPool(device.device, &pool, nullptr, &slot.pool));
+            pool.queueFamilyIndex = device_.queueFamily;
+            VK_CHECK(vkCreateCommandPool(device_.device, &pool, nullptr, &slot.pool));
             auto alloc = makeStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
             alloc.commandPool = slot.pool;
             alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
             alloc.commandBufferCount = 1;
-            VK_CHECK(vkAllocateCommandBuffers(device.device, &alloc, &slot.cmd));
+            VK_CHECK(vkAllocateCommandBuffers(device_.device, &alloc, &slot.cmd));
             // Created signalled: the first wait on each slot returns at once.
             auto fence = makeStruct<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
             fence.flags = VK_FENCE_CREATE_SIGNALED_BIT;
-            VK_CHECK(vkCreateFence(device.device, &fence, nullptr, &slot.fence));
-            slot.imageAcquired = createSemaphore(device);
+            VK_CHECK(vkCreateFence(device_.device, &fence, nullptr, &slot.fence));
+            slot.imageAcquired = createSemaphore(device_);
         }
     } catch (...) {
         release();
@@ -199,7 +256,10 @@ void FrameLoop::release()
             vkDestroyCommandPool(device_.device, slot.pool, nullptr);
         slot = Slot {};
     }
-    destroySwapchain(device_, swapchain_);
+    if (sink_)
+        destroySinkImages();
+    else
+        destroySwapchain(device_, swapchain_);
 }
 
 void FrameLoop::runReleases(bool all)
@@ -241,7 +301,12 @@ bool FrameLoop::beginFrame(VkExtent2D size, Frame& frame)
         waitFrames();
         return false;
     }
-    if (outOfDate_ || !swapchain_.swapchain || size.width != swapchain_.extent.width || size.height != swapchain_.extent.height) {
+    if (sink_ && (size.width != swapchain_.extent.width || size.height != swapchain_.extent.height)) {
+        waitFrames(); // frames in flight still draw into the old images
+        destroySinkImages();
+        createSinkImages(size);
+    } else if (!sink_
+        && (outOfDate_ || !swapchain_.swapchain || size.width != swapchain_.extent.width || size.height != swapchain_.extent.height)) {
         // The old images may still be drawn into by frames in flight: wait for their fences,
         // then for the queue, whose presents (which have no fence without
         // VK_EXT_swapchain_maintenance1) still wait on the old render-finished semaphores.
@@ -251,6 +316,7 @@ bool FrameLoop::beginFrame(VkExtent2D size, Frame& frame)
         outOfDate_ = false;
         if (!recreateSwapchain(device_, swapchain_, size))
             return false;
+        ++generation_;
     }
 
     const std::uint32_t index = static_cast<std::uint32_t>(frameNumber_ % framesInFlight);
@@ -261,17 +327,20 @@ bool FrameLoop::beginFrame(VkExtent2D size, Frame& frame)
         release.waitsLeft -= release.waitsLeft > 0;
     runReleases(false);
 
-    std::uint32_t imageIndex = 0;
-    const VkResult acquired
-        = vkAcquireNextImageKHR(device_.device, swapchain_.swapchain, UINT64_MAX, slot.imageAcquired, VK_NULL_HANDLE, &imageIndex);
-    if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
-        outOfDate_ = true; // the semaphore was not signalled: nothing to undo
-        return false;
+    // A sink's images are the slots' own: the slot's fence has just said its image is free.
+    std::uint32_t imageIndex = index;
+    if (!sink_) {
+        const VkResult acquired
+            = vkAcquireNextImageKHR(device_.device, swapchain_.swapchain, UINT64_MAX, slot.imageAcquired, VK_NULL_HANDLE, &imageIndex);
+        if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
+            outOfDate_ = true; // the semaphore was not signalled: nothing to undo
+            return false;
+        }
+        if (acquired == VK_SUBOPTIMAL_KHR)
+            outOfDate_ = true; // the image is acquired and the semaphore signalled: draw it, rebuild next time
+        else if (acquired != VK_SUCCESS)
+            gpuFail("acquiring a swapchain image (vkAcquireNextImageKHR)", acquired);
     }
-    if (acquired == VK_SUBOPTIMAL_KHR)
-        outOfDate_ = true; // the image is acquired and the semaphore signalled: draw it, rebuild next time
-    else if (acquired != VK_SUCCESS)
-        gpuFail("acquiring a swapchain image (vkAcquireNextImageKHR)", acquired);
 
     // Reset only now that a submission will follow: a skipped frame leaves the fence signalled.
     VK_CHECK(vkResetFences(device_.device, 1, &slot.fence));
@@ -299,6 +368,10 @@ void FrameLoop::endFrame(Frame& frame)
         fail("FrameLoop::endFrame: no frame was begun");
     recording_ = false;
     Slot& slot = slots_[frame.slot];
+    if (sink_) {
+        endSinkFrame(frame);
+        return;
+    }
     VK_CHECK(vkEndCommandBuffer(frame.cmd));
 
     const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
@@ -325,6 +398,36 @@ void FrameLoop::endFrame(Frame& frame)
         outOfDate_ = true;
     else if (presented != VK_SUCCESS)
         gpuFail("presenting a frame (vkQueuePresentKHR)", presented);
+}
+
+void FrameLoop::endSinkFrame(Frame& frame)
+{
+    Slot& slot = slots_[frame.slot];
+    const Buffer& pixels = sinkPixels_[frame.imageIndex];
+    // The finished image to host memory. Its last writers may be colour output or a transfer
+    // (a screenshot's copy leaves it in PRESENT_SRC_KHR too).
+    imageBarrier(frame.cmd, frame.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+        VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+        VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    VkBufferImageCopy region {};
+    region.imageSubresource = { VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1 };
+    region.imageExtent = { frame.extent.width, frame.extent.height, 1 };
+    vkCmdCopyImageToBuffer(frame.cmd, frame.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, pixels.buffer, 1, &region);
+    auto toHost = makeStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+    toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(frame.cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0, nullptr);
+    VK_CHECK(vkEndCommandBuffer(frame.cmd));
+
+    auto submit = makeStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &frame.cmd;
+    if (VkResult r = vkQueueSubmit(device_.queue, 1, &submit, slot.fence); r != VK_SUCCESS)
+        gpuFail("submitting a frame (vkQueueSubmit)", r);
+    // Shown as soon as it is drawn, as a FIFO present would: the frame's time includes its showing.
+    if (VkResult r = vkWaitForFences(device_.device, 1, &slot.fence, VK_TRUE, UINT64_MAX); r != VK_SUCCESS)
+        gpuFail("waiting for a frame to show (vkWaitForFences)", r);
+    sink_->show(static_cast<const std::uint8_t*>(pixels.mapped), frame.extent);
 }
 
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout oldLayout, VkImageLayout newLayout,

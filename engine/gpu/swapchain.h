@@ -23,9 +23,12 @@
 // until that frame's fence has passed. Per-slot resources (indexed by Frame::slot) may be
 // rewritten in beginFrame's wake; anything else is released through FrameLoop::defer.
 
+#include "gpu/buffers.h"
 #include "gpu/device.h"
 
+#include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 namespace facesketch::gpu {
@@ -78,11 +81,31 @@ struct Frame {
     VkExtent2D extent {}; ///< pixels; the size to draw at this frame
 };
 
+/// Where a FrameLoop without a swapchain sends each finished frame: a window-system path of the
+/// app's own (gui/x11_shm_sink.h: Mesa's software WSI copies frames to the X server through its
+/// socket, which costs Xvfb more than the whole frame costs lavapipe), or a test's CPU reference.
+class FrameSink {
+public:
+    virtual ~FrameSink() = default;
+    /// The format the frames are drawn in and handed over: B8G8R8A8_UNORM or R8G8B8A8_UNORM.
+    virtual VkFormat format() const = 0;
+    /// Shows one finished frame: extent.width * extent.height pixels of 4 bytes, rows top first
+    /// and tightly packed. The pixels may be overwritten as soon as it returns.
+    virtual void show(const std::uint8_t* pixels, VkExtent2D extent) = 0;
+};
+
 /// The swapchain plus a ring of framesInFlight frames (command buffer, fence, acquire semaphore).
 class FrameLoop {
 public:
     /// `device` must have been created with `.swapchain = true` and a queue that presents to `surface`.
     FrameLoop(Device& device, VkSurfaceKHR surface, VkExtent2D framebufferSize, const SwapchainOptions& options = {});
+    /// Without a swapchain: the loop draws into images of its own (one per slot, in the sink's
+    /// format, with TRANSFER_SRC and TRANSFER_DST usage) and endFrame copies each finished frame
+    /// to host memory and hands it to `sink` once the GPU is done with it. The same Frame contract
+    /// (images in UNDEFINED at beginFrame, PRESENT_SRC_KHR at the end of the commands), so a
+    /// renderer cannot tell the two apart; `swapchain()` then has a null handle and the loop's images.
+    /// The device needs `.swapchain = true` all the same: that extension makes PRESENT_SRC_KHR a layout.
+    FrameLoop(Device& device, std::unique_ptr<FrameSink> sink, VkExtent2D framebufferSize, const SwapchainOptions& options = {});
     /// Waits for this loop's frames (their fences) and the queue (the last presents), runs pending
     /// releases, destroys everything.
     ~FrameLoop();
@@ -111,6 +134,11 @@ public:
     void waitFrames();
 
     const Swapchain& swapchain() const { return swapchain_; }
+    /// Counts the times the images were (re)created: per-image resources made for another
+    /// generation are stale.
+    std::uint64_t imagesGeneration() const { return generation_; }
+    /// Whether frames go to a FrameSink rather than a swapchain.
+    bool presentsToSink() const { return sink_ != nullptr; }
     std::uint64_t framesBegun() const { return frameNumber_; }
 
 private:
@@ -126,8 +154,17 @@ private:
     };
     void runReleases(bool all);
     void release();
+    void createSlots();
+    void endSinkFrame(Frame& frame);
+    /// Sink mode: the loop's own images and their host copies at `size`.
+    void createSinkImages(VkExtent2D size);
+    void destroySinkImages();
     Device& device_;
     Swapchain swapchain_;
+    std::unique_ptr<FrameSink> sink_;
+    std::vector<Image> sinkImages_;  ///< one per slot
+    std::vector<Buffer> sinkPixels_; ///< one per slot, host-visible
+    std::uint64_t generation_ = 0;
     Slot slots_[framesInFlight];
     std::vector<Release> releases_;
     std::uint64_t frameNumber_ = 0;

@@ -8,7 +8,9 @@ if [ -z "${DISPLAY:-}" ]; then exec xvfb-run -a -s "-screen 0 1280x1024x24" bash
 FACESKETCH=$1 WORK=$2
 source "$(dirname "$0")/input_lib.sh"
 make_data
-start_app --autosave-seconds 1
+# Through the Vulkan swapchain, which the other gui tests (MIT-SHM under Xvfb) do not use.
+start_app --autosave-seconds 1 --present swapchain
+wait_for "gui: presenting through swapchain$"
 drag "$(guide upper_lip 0,0)"
 wait_for "gui: stroke 1: [0-9]+ vertices mapped"
 key 3

@@ -58,18 +58,20 @@ guide() {
   grep -E "^guide $1 view $2:" "$WORK/app.log" | tail -n 1 | sed -e 's/^[^:]*: //'
 }
 
-# Drags with the left button through the points "x,y x,y ..." (window coordinates).
+# Drags with the left button through the points "x,y x,y ..." (window coordinates), in one
+# xdotool call: the events arrive far faster than the app draws frames, so they queue up as a
+# quick hand's do on a slow machine, and the app must take each position from its own event
+# (sketch_input.sh checks that the stroke holds every point).
 drag() {
-  local points=($1) first=1 p
+  local points=($1) args=() first=1 p
   for p in "${points[@]}"; do
-    xdotool mousemove --window "$WID" "${p%,*}" "${p#*,}"
+    args+=(mousemove --window "$WID" "${p%,*}" "${p#*,}")
     if [ $first = 1 ]; then
-      xdotool mousedown 1
+      args+=(mousedown 1)
       first=0
     fi
-    sleep 0.03
   done
-  xdotool mouseup 1
+  xdotool "${args[@]}" mouseup 1
 }
 
 key() {

@@ -48,7 +48,7 @@ grep -q "validation" "$WORK/app.log" && fail "validation messages"
   || fail "facesketch sketch could not replay the session: $(cat "$WORK/replay.log")"
 grep -q "2 strokes applied, 0 refused" "$WORK/replay.log" || fail "replay: $(cat "$WORK/replay.log")"
 
-python3 - "$WORK" << 'PY'
+python3 - "$WORK" "$lip" "$nose" << 'PY'
 import json, struct, sys, zlib
 work = sys.argv[1]
 s = json.load(open(f"{work}/app.json"))
@@ -56,7 +56,17 @@ actions = s["actions"]
 assert len(actions) == 2, f"{len(actions)} strokes in the session"
 views = [(a["stroke"]["view"]["azimuth"], a["stroke"]["view"]["elevation"]) for a in actions]
 assert abs(views[0][0]) < 1e-9 and abs(views[1][0] - 90) < 1e-9, f"views {views}"
-assert all(len(a["stroke"]["points"]) >= 3 for a in actions)
+# Every position the drag passed through is in the stroke, in order (a repeated position adds
+# nothing): the events were queued faster than frames, so this fails if the app read the pointer's
+# latest position instead of each event's.
+for action, dragged in zip(actions, sys.argv[2:4]):
+    want = []
+    for p in dragged.split():
+        xy = tuple(float(c) for c in p.split(","))
+        if not want or want[-1] != xy:
+            want.append(xy)
+    got = [(p["x"], p["y"]) for p in action["stroke"]["points"]]
+    assert got == want, f"the stroke holds {got}, the drag went through {want}"
 
 def vertices(path):
     return [tuple(map(float, l.split()[1:4])) for l in open(path) if l.startswith("v ")]
