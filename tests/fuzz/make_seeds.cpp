@@ -237,6 +237,41 @@ int main(int argc, char** argv)
         session.actions.push_back(b);
         writeBytes(root / "session" / "seed-two-strokes.json", sketch::sessionToJson(session));
 
+        // A version 3 session with every kind of action: the two shape strokes, pose strokes
+        // (primary and alternative), keyframes, moving and deleting one, clearing the pose, and
+        // the pose model, face and tension, so the fuzzer starts from every branch of the parser.
+        session.poses = "faces.poses";
+        session.face = "face.obj";
+        session.tension = 0.25;
+        auto poseAction = [](sketch::PoseActionKind kind, int afterStrokes) {
+            sketch::PoseAction p;
+            p.kind = kind;
+            p.afterStrokes = afterStrokes;
+            return p;
+        };
+        sketch::PoseAction smile = poseAction(sketch::PoseActionKind::Stroke, 1);
+        smile.stroke = a.stroke;
+        session.poseActions.push_back(smile);
+        sketch::PoseAction key = poseAction(sketch::PoseActionKind::Keyframe, 1);
+        key.time = 0.5;
+        session.poseActions.push_back(key);
+        sketch::PoseAction frown = poseAction(sketch::PoseActionKind::Stroke, 2);
+        frown.stroke = b.stroke;
+        frown.alternative = true;
+        session.poseActions.push_back(frown);
+        key.afterStrokes = 2;
+        key.time = 1.25;
+        session.poseActions.push_back(key);
+        sketch::PoseAction move = poseAction(sketch::PoseActionKind::MoveKeyframe, 2);
+        move.time = 0.5;
+        move.to = 2;
+        session.poseActions.push_back(move);
+        sketch::PoseAction remove = poseAction(sketch::PoseActionKind::DeleteKeyframe, 2);
+        remove.time = 1.25;
+        session.poseActions.push_back(remove);
+        session.poseActions.push_back(poseAction(sketch::PoseActionKind::Clear, 2));
+        writeBytes(root / "session" / "seed-every-action-v3.json", sketch::sessionToJson(session));
+
         // A pose model: first byte 0 the payload alone (the harness adds header and checksum), 1
         // the whole file.
         pose::savePoseModel(tinyPoseModel(), tmp / "p.poses");
