@@ -449,7 +449,9 @@ void App::install(std::unique_ptr<Loaded> loaded)
     doc_ = std::make_unique<gui::Document>(*loaded_->replayer, loaded_->model, loaded_->dataset);
     if (loaded_->poseModel)
         doc_->enablePosing(*loaded_->poseModel, loaded_->posesPath, [this] { return shapeHead(); });
-    autosave_ = std::make_unique<gui::Autosave>(gui::recoveryFile(), c_.autosaveSeconds, doc_->revision());
+    // A benchmark neither offers nor writes the recovery file: its scripted stroke is not work.
+    autosave_
+        = std::make_unique<gui::Autosave>(c_.benchFrames > 0 ? fs::path() : gui::recoveryFile(), c_.autosaveSeconds, doc_->revision());
 
     const Mesh mean = meanMesh(*loaded_->faceModel);
     int w = 0, h = 0;
@@ -508,8 +510,8 @@ void App::install(std::unique_ptr<Loaded> loaded)
     }
     faceChanged();
     viewDirty_ = true;
-    std::cout << "gui: ready, " << loaded_->faceModel->vertexCount() << " vertices, recovery file " << autosave_->file().string()
-              << std::endl;
+    std::cout << "gui: ready, " << loaded_->faceModel->vertexCount() << " vertices, recovery file "
+              << (autosave_->file().empty() ? std::string("none (a benchmark)") : autosave_->file().string()) << std::endl;
 }
 
 void App::say(const std::string& text)

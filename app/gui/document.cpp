@@ -418,6 +418,8 @@ bool Autosave::flush(const Document& document)
 
 bool Autosave::save(const Document& document)
 {
+    if (file_.empty())
+        return false;
     try {
         std::filesystem::create_directories(file_.parent_path());
         document.save(file_);

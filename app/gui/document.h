@@ -207,7 +207,9 @@ std::filesystem::path recoveryFile();
 class Autosave {
 public:
     /// Nothing is saved until the document's revision differs from `startRevision` (an
-    /// untouched document never overwrites the recovery of an earlier run).
+    /// untouched document never overwrites the recovery of an earlier run). An empty `file`
+    /// turns autosaving off: tick and flush never write (a benchmark's scripted strokes must not
+    /// replace the user's recovery file).
     Autosave(std::filesystem::path file, double intervalSeconds, std::uint64_t startRevision);
     /// Saves if at least the interval has passed since the last autosave (or the start) and
     /// the document's revision differs from the one last autosaved. `nowSeconds` is any

@@ -425,6 +425,16 @@ TEST_CASE("autosave: saves changes once per interval and on flush, and the recov
     REQUIRE_FALSE(broken.flush(doc));
     REQUIRE_FALSE(broken.lastError().empty());
     REQUIRE_THROWS_WITH(Autosave(file, 0, 0), Catch::Contains("interval"));
+
+    // Turned off (no file, as for a benchmark): a changed document is never written, no error.
+    const auto before = std::filesystem::last_write_time(file);
+    Autosave off({}, 1, 0);
+    REQUIRE_FALSE(off.tick(doc, 0));
+    REQUIRE_FALSE(off.tick(doc, 10));
+    REQUIRE_FALSE(off.flush(doc));
+    REQUIRE(off.saves() == 0);
+    REQUIRE(off.lastError().empty());
+    REQUIRE(std::filesystem::last_write_time(file) == before);
 }
 
 TEST_CASE("autosave: the recovery file lies under FACESKETCH_STATE_DIR, XDG_STATE_HOME or ~/.local/state")
