@@ -33,7 +33,7 @@ int trapError(Display*, XErrorEvent* event)
 
 class X11ShmSink final : public gpu::FrameSink {
 public:
-    X11ShmSink(Display* display, Window window, Visual* visual, int depth, VkFormat format)
+    X11ShmSink(Display* display, ::Window window, Visual* visual, int depth, VkFormat format)
         : display_(display)
         , window_(window)
         , visual_(visual)
@@ -145,7 +145,7 @@ private:
     }
 
     Display* display_;
-    Window window_;
+    ::Window window_; // Xlib's (an XID), not gui::Window
     Visual* visual_;
     int depth_;
     VkFormat format_;
@@ -169,7 +169,7 @@ std::unique_ptr<gpu::FrameSink> createX11ShmSink(GLFWwindow* window, VkExtent2D 
         why = "the X server has no MIT-SHM";
         return nullptr;
     }
-    const Window x = glfwGetX11Window(window);
+    const ::Window x = glfwGetX11Window(window);
     XWindowAttributes attributes {};
     if (!XGetWindowAttributes(display, x, &attributes)) {
         why = "cannot read the window's attributes";
