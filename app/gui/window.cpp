@@ -481,7 +481,8 @@ bool Window::begin(gpu::Frame& frame, const float background[4], double sceneSca
     if (!loop_->beginFrame({ std::uint32_t(w), std::uint32_t(h) }, frame))
         return false;
     if (!targets_ || targetsFor_ != loop_->imagesGeneration()) {
-        // The swapchain was recreated: the old targets may still be used by a frame in flight.
+        // The frame loop's images were remade (a new swapchain or size): the old targets may
+        // still be used by a frame in flight.
         if (targets_) {
             std::shared_ptr<Targets> old(std::move(targets_));
             loop_->defer([this, old] { destroy(device_, *old); });

@@ -1,6 +1,7 @@
 #pragma once
 // The app's window: GLFW (no client API), a Vulkan device that presents to it (gpu/device.h's
-// three steps), the frame loop (gpu/swapchain.h), one render pass that the scene
+// three steps), the frame loop (gpu/swapchain.h: through the Vulkan swapchain, or for a device
+// that draws on the CPU under X11 through MIT-SHM, gui/x11_shm_sink.h; Present), one render pass that the scene
 // (render/scene_renderer.h) and ImGui (Debian's imgui_impl_glfw / imgui_impl_vulkan, built into
 // the app) draw into, and screenshots of the presented image. HiDPI: everything is in
 // framebuffer pixels; contentScale() scales the ImGui style and fonts and converts GLFW's
@@ -111,13 +112,13 @@ private:
     void createTargets();
     void createReduced(VkExtent2D extent);
     void destroyTargets();
-    GLFWwindow* window_ = nullptr;
     /// The cursor at the last motion event handled, so a button event queued behind it gets its
     /// own position rather than the pointer's latest one.
     void eventCursor(double& x, double& y) const;
     /// Chooses how frames reach the window (WindowOptions::present) and makes the frame loop.
     void createLoop(Present present, VkExtent2D size);
 
+    GLFWwindow* window_ = nullptr;
     WindowEvents events_;
     struct CursorEvent {
         double x, y;
