@@ -1,9 +1,9 @@
 #pragma once
 // The app's window: GLFW (no client API), a Vulkan device that presents to it (gpu/device.h's
 // three steps), the frame loop (gpu/swapchain.h: through the Vulkan swapchain, or for a device
-// that draws on the CPU under X11 through MIT-SHM, gui/x11_shm_sink.h; Present), one render pass that the scene
-// (render/scene_renderer.h) and ImGui (Debian's imgui_impl_glfw / imgui_impl_vulkan, built into
-// the app) draw into, and screenshots of the presented image. HiDPI: everything is in
+// that draws on the CPU under X11 through MIT-SHM, gui/x11_shm_sink.h; see Present), one render
+// pass that the scene (render/scene_renderer.h) and ImGui (Debian's imgui_impl_glfw /
+// imgui_impl_vulkan, built into the app) draw into, and screenshots of the presented image. HiDPI: everything is in
 // framebuffer pixels; contentScale() scales the ImGui style and fonts and converts GLFW's
 // cursor positions (screen coordinates) to pixels.
 //
