@@ -172,6 +172,12 @@ private:
     bool outOfDate_ = false;
 };
 
+/// Records the copy of a whole colour `image` of `extent` pixels, in VK_IMAGE_LAYOUT_PRESENT_SRC_KHR
+/// after colour output or a transfer wrote it, into `buffer` (rows tightly packed), and the
+/// barrier that makes the copy visible to the host once the commands' fence has passed. The
+/// image is left in VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL. (FrameLoop's sink mode, screenshots.)
+void copyImageToHost(VkCommandBuffer cmd, VkImage image, VkExtent2D extent, VkBuffer buffer);
+
 /// Records an image layout transition with a full pipeline barrier between the given stages and
 /// accesses, for one mip level and layer of `aspect`.
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout oldLayout, VkImageLayout newLayout,
