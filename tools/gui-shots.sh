@@ -29,21 +29,12 @@ builtin=$cache/builtin-high-v2
 rm -rf "$WORK/state" && mkdir "$WORK/state"
 "$FACESKETCH" gui --size 1280x800 --print-guides --session-out pose.json --screenshot "$out/gui-pose.png" > app.log 2>&1 &
 APP=$!
-wait_for "gui: first frame" 300
-WID=$(xdotool search --sync --limit 1 --pid "$APP" --name '^FaceSketch$')
-xdotool windowfocus --sync "$WID" 2> /dev/null || xdotool windowfocus "$WID"
-sleep 0.3
+attach_app
 key Tab
 wait_for "gui: pose mode"
 key k
 wait_for "gui: keyframe at 0.000 s"
-smile=$(python3 -c '
-import sys
-p = [tuple(map(int, q.split(","))) for q in sys.argv[1].split()]
-xs = [x for x, _ in p]
-c, h = (min(xs) + max(xs)) / 2, (max(xs) - min(xs)) / 2
-print(" ".join(f"{x},{round(y - 16 * ((x - c) / h) ** 2)}" for x, y in p))' "$(guide upper_lip 0,0)")
-drag "$smile"
+drag "$(smile 16 "$(guide upper_lip 0,0)")"
 wait_for "gui: pose stroke: [1-9][0-9]* feature points"
 key Up
 wait_for "gui: time 1.000 s"

@@ -46,11 +46,27 @@ start_app() {
   export FACESKETCH_STATE_DIR="$WORK/state" FACESKETCH_CACHE_DIR="$WORK/cache"
   "$FACESKETCH" gui "$WORK/faces.model" "$WORK/faces" --size 1000x760 --print-guides "$@" > "$WORK/app.log" 2>&1 &
   APP=$!
+  attach_app
+}
+
+# For an app started in the background as APP, writing to $WORK/app.log: waits for its first
+# frame, sets WID (its window) and gives that window the keyboard focus.
+attach_app() {
   wait_for "gui: first frame" 300
   WID=$(xdotool search --sync --limit 1 --pid "$APP" --name '^FaceSketch$')
   [ -n "$WID" ] || fail "no FaceSketch window"
   xdotool windowfocus --sync "$WID" 2> /dev/null || xdotool windowfocus "$WID"
   sleep 0.3
+}
+
+# The points "x,y ..." of a lip traced as a smile: its ends raised by up to $1 pixels, its middle kept.
+smile() {
+  python3 -c '
+import sys
+lift, p = float(sys.argv[1]), [tuple(map(int, q.split(","))) for q in sys.argv[2].split()]
+xs = [x for x, _ in p]
+c, h = (min(xs) + max(xs)) / 2, (max(xs) - min(xs)) / 2
+print(" ".join(f"{x},{round(y - lift * ((x - c) / h) ** 2)}" for x, y in p))' "$1" "$2"
 }
 
 # The last guide line for $1 in view $2 ("0,0", "90,0"): its points, "x,y x,y ...".

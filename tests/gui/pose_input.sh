@@ -27,13 +27,7 @@ wait_for "gui: keyframe at 0.000 s \(1 keyframes\)"
 lip=$(guide upper_lip 0,0)
 [ -n "$lip" ] || fail "no upper lip guide in the front view"
 # A smile: the lip's ends raised by up to 14 pixels, its middle kept.
-smile=$(python3 -c '
-import sys
-p = [tuple(map(int, q.split(","))) for q in sys.argv[1].split()]
-xs = [x for x, _ in p]
-c, h = (min(xs) + max(xs)) / 2, (max(xs) - min(xs)) / 2
-print(" ".join(f"{x},{round(y - 14 * ((x - c) / h) ** 2)}" for x, y in p))' "$lip")
-drag "$smile"
+drag "$(smile 14 "$lip")"
 wait_for "gui: pose stroke: [1-9][0-9]* feature points"
 key Up
 wait_for "gui: time 1.000 s"
