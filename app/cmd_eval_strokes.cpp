@@ -30,6 +30,9 @@ struct EvalStrokesCommand {
     bool noCorrelation = false, quiet = false, noProject = false, ownContours = false, thesisObservations = false;
     std::string oracle = "none";
     double supersedeRadius = sketch::TrackingOptions {}.supersedeRadius;
+    double planeNoise = sketch::TrackingOptions {}.planeNoiseMm, depthNoise = sketch::TrackingOptions {}.depthNoiseMm;
+    int robustPasses = sketch::TrackingOptions {}.robustPasses;
+    double robustK = sketch::TrackingOptions {}.robustK;
     std::vector<std::string> mapperParams;
 };
 
@@ -91,6 +94,10 @@ void runEvalStrokes(const EvalStrokesCommand& c)
     o.simulate.seed = c.seed;
     o.correlation = !c.noCorrelation;
     o.tracking.supersedeRadius = c.supersedeRadius;
+    o.tracking.planeNoiseMm = c.planeNoise;
+    o.tracking.depthNoiseMm = c.depthNoise;
+    o.tracking.robustPasses = c.robustPasses;
+    o.tracking.robustK = c.robustK;
     o.tracking.projectOntoFaceSpace = !c.noProject;
     if (c.thesisObservations)
         o.params = sketch::MapperParams::thesis();
@@ -123,6 +130,8 @@ void runEvalStrokes(const EvalStrokesCommand& c)
                 { "across_mm", r.acrossMm }, { "within_1mm", r.within1Mm }, { "within_3mm", r.within3Mm } });
         const nlohmann::json doc { { "model", c.model }, { "dataset", c.dataset }, { "vertices", m.vertexCount() },
             { "image_size", c.size }, { "seed", c.seed }, { "correlation", !c.noCorrelation }, { "supersede_radius_mm", c.supersedeRadius },
+            { "plane_noise_mm", c.planeNoise }, { "depth_noise_mm", c.depthNoise },
+            { "robust_passes", c.robustPasses }, { "robust_k", c.robustK },
             { "project_onto_face_space", !c.noProject }, { "view_plane_only", o.params.viewPlaneOnly }, { "own_contours", c.ownContours },
             { "across_stroke", o.params.acrossStrokeOnly }, { "similar_faces", c.similarFaces }, { "rereads", c.rereads },
             { "mapper_params", c.mapperParams }, { "oracle", c.oracle }, { "results", records } };
@@ -176,6 +185,18 @@ void addEvalStrokesCommand(CLI::App& eval)
     cmd->add_option("--supersede-radius", c->supersedeRadius, "Tracking: older constraints this near a new stroke's line are replaced, mm")
         ->capture_default_str()
         ->check(CLI::Range(0.0, 1000.0));
+    cmd->add_option("--plane-noise", c->planeNoise, "Tracking: how well a stroke places a vertex in its view plane, mm (0: exactly)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 100.0));
+    cmd->add_option("--depth-noise", c->depthNoise, "Tracking: how well a stroke's reading gives a vertex's depth, mm (0: exactly)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1000.0));
+    cmd->add_option("--robust-passes", c->robustPasses, "Tracking: rebuilds that reweight rows the face misses (Huber)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 10));
+    cmd->add_option("--robust-k", c->robustK, "Tracking: misses beyond this many standard deviations are reweighted")
+        ->capture_default_str()
+        ->check(CLI::Range(0.1, 100.0));
     cmd->add_flag("--no-project", c->noProject, "Tracking: keep the strokes' own positions instead of projecting them onto the face space");
     cmd->add_flag("--thesis-observations", c->thesisObservations,
         "The thesis' mapper parameters (MapperParams::thesis()): observations pin the stroke point in 3D (4.6.2) instead of the offset "

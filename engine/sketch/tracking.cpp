@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "sketch/symmetry.h"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
@@ -21,12 +22,54 @@ Eigen::Vector3d viewAxisOf(const Eigen::Matrix<double, 2, 3>& P)
     return P.row(0).transpose().cross(P.row(1).transpose()).normalized();
 }
 
+// Rows of noise 0 among noisy ones: pinned, in effect, without dividing by zero.
+constexpr double kExactVariance = 1e-8; // mm^2
+
+// The constraints' rows weighted by their inverse variances: the information matrix
+// J = sum a a^T / n and h = sum a b / n give the position's mean J^+ h, measured along J's
+// eigenvectors with variances 1 / lambda. Directions no row touches (lambda ~ 0) stay
+// unmeasured; two views a few degrees apart measure the direction between them, weakly.
+void addWeighted(stats::Observations& observations, Eigen::Index vertex, const std::vector<VertexConstraint>& constraints)
+{
+    Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d h = Eigen::Vector3d::Zero();
+    for (const VertexConstraint& c : constraints)
+        for (int i = 0; i < c.rows; ++i) {
+            const Eigen::Vector3d a = c.A.row(i).transpose();
+            const double w = 1.0 / std::max(c.noise[i], kExactVariance);
+            J += w * a * a.transpose();
+            h += w * c.b[i] * a;
+        }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(J);
+    const Eigen::Vector3d& lambda = eigen.eigenvalues(); // ascending
+    Eigen::Matrix3d R = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d values = Eigen::Vector3d::Zero(), variances = Eigen::Vector3d::Zero();
+    int rows = 0;
+    for (int j = 2; j >= 0; --j) {
+        if (!(lambda[j] > 1e-9 * lambda[2]))
+            break;
+        const Eigen::Vector3d v = eigen.eigenvectors().col(j);
+        R.row(rows) = v.transpose();
+        values[rows] = v.dot(h) / lambda[j];
+        variances[rows] = 1.0 / lambda[j];
+        ++rows;
+    }
+    observations.addVertexRows(vertex, R, rows, values, variances);
+}
+
 } // namespace
 
 void addCombined(stats::Observations& observations, Eigen::Index vertex, const std::vector<VertexConstraint>& constraints)
 {
     if (constraints.empty())
         return;
+    const bool noisy = std::any_of(constraints.begin(), constraints.end(), [](const VertexConstraint& c) {
+        return (c.noise.head(c.rows).array() > 0.0).any();
+    });
+    if (noisy) {
+        addWeighted(observations, vertex, constraints);
+        return;
+    }
     if (constraints.size() == 1 && constraints[0].rows == 3) {
         // A 3D constraint's rows are orthonormal: its position is A^T b.
         observations.addVertex(vertex, constraints[0].A.transpose() * constraints[0].b);
@@ -83,6 +126,12 @@ TrackingModel::TrackingModel(const stats::FaceModel& model, const TrackingOption
         fail("TrackingModel: supersedeRadius must be a finite distance >= 0 mm, found ", options.supersedeRadius);
     if (!(options.supersedeAngleDeg >= 0 && options.supersedeAngleDeg <= 180))
         fail("TrackingModel: supersedeAngleDeg must lie in [0, 180], found ", options.supersedeAngleDeg);
+    if (options.robustPasses < 0 || !(options.robustK > 0) || !std::isfinite(options.robustK))
+        fail("TrackingModel: robustPasses must be >= 0 and robustK a finite number > 0, found ", options.robustPasses, " and ",
+            options.robustK);
+    for (const auto& [name, sigma] : { std::pair { "planeNoiseMm", options.planeNoiseMm }, { "depthNoiseMm", options.depthNoiseMm } })
+        if (!(sigma >= 0) || !std::isfinite(sigma))
+            fail("TrackingModel: ", name, " must be a finite distance >= 0 mm, found ", sigma);
     TrackingState start;
     start.constraints.resize(static_cast<size_t>(model.vertexCount()));
     start.face = model.meanFace;
@@ -155,6 +204,8 @@ void TrackingModel::apply(const StrokeReading& reading, const ApplyOptions& opti
     const bool hasView = planeValid;
     const Eigen::Vector3d axis = hasView ? viewAxisOf(P) : Eigen::Vector3d::UnitZ();
     const double cosLimit = std::cos(options_.supersedeAngleDeg * M_PI / 180.0);
+    const double planeVariance = options_.planeNoiseMm * options_.planeNoiseMm;
+    const double depthVariance = options_.depthNoiseMm * options_.depthNoiseMm;
 
     // New constraints per vertex: the stroke's own, then its mirror images where the stroke
     // did not itself map.
@@ -173,14 +224,24 @@ void TrackingModel::apply(const StrokeReading& reading, const ApplyOptions& opti
             if (c.rows == 1)
                 c.A.row(1).setZero();
             c.b = c.A * o.position;
+            c.noise << planeVariance, depthVariance, 0.0;
         } else if (o.viewPlaneOnly) {
             c.rows = 2;
             c.A.topRows<2>() = P;
             c.b.head<2>() = P * o.position;
+            c.noise << planeVariance, planeVariance, 0.0;
+        } else if (hasView && (planeVariance > 0 || depthVariance > 0)) {
+            // In the view's frame, so that the depth row can carry its own noise.
+            c.rows = 3;
+            c.A.topRows<2>() = P;
+            c.A.row(2) = axis.transpose();
+            c.b = c.A * o.position;
+            c.noise << planeVariance, planeVariance, depthVariance;
         } else {
             c.rows = 3;
             c.A = Eigen::Matrix3d::Identity();
             c.b = o.position;
+            c.noise.setConstant(planeVariance);
         }
         added.push_back({ o.vertex, c });
     }
@@ -249,22 +310,45 @@ void TrackingModel::apply(const StrokeReading& reading, const ApplyOptions& opti
     for (const auto& [v, c] : added)
         next.constraints[v].push_back(c);
 
-    // Step 3: rebuild.
-    stats::Observations obs;
-    for (size_t v = 0; v < next.constraints.size(); ++v)
-        addCombined(obs, static_cast<Eigen::Index>(v), next.constraints[v]);
+    // Step 3: rebuild, reweighting noisy rows that the rebuilt face leaves far behind.
     stats::ReconstructOptions ro;
     ro.cleanUp = options_.cleanUp;
     ro.correlation = options.correlation ? options_.correlation : stats::Correlation::Off;
-    next.face = stats::reconstruct(model_, obs, ro).face;
-    if (!next.face.allFinite())
-        fail("tracking: the face model returned a non-finite face for this stroke");
+    std::vector<std::vector<VertexConstraint>> weighted = next.constraints;
+    for (int pass = 0;; ++pass) {
+        stats::Observations obs;
+        for (size_t v = 0; v < weighted.size(); ++v)
+            addCombined(obs, static_cast<Eigen::Index>(v), weighted[v]);
+        next.face = stats::reconstruct(model_, obs, ro).face;
+        if (!next.face.allFinite())
+            fail("tracking: the face model returned a non-finite face for this stroke");
+        if (pass == options_.robustPasses)
+            break;
+        for (size_t v = 0; v < weighted.size(); ++v)
+            for (size_t k = 0; k < weighted[v].size(); ++k) {
+                const VertexConstraint& c = next.constraints[v][k];
+                const Eigen::Vector3d r = c.A * next.face.segment<3>(3 * static_cast<Eigen::Index>(v)) - c.b;
+                for (int i = 0; i < c.rows; ++i)
+                    if (c.noise[i] > 0.0) {
+                        // Huber's weight: 1 within robustK sigma, falling as 1 / residual beyond.
+                        const double z = std::abs(r[i]) / std::sqrt(c.noise[i]);
+                        weighted[v][k].noise[i] = z <= options_.robustK ? c.noise[i] : c.noise[i] * z / options_.robustK;
+                    }
+            }
+    }
 
     // Step 4: project the constraints onto the face space.
+    // Rows with noise keep their measured values: the face does not pass through them, and
+    // replacing them by it after every stroke would let each stroke pull them towards the
+    // prior, until many strokes later they said little of what was drawn.
     if (options_.projectOntoFaceSpace)
         for (size_t v = 0; v < next.constraints.size(); ++v)
-            for (VertexConstraint& c : next.constraints[v])
-                c.b.head(c.rows) = (c.A * next.face.segment<3>(3 * static_cast<Eigen::Index>(v))).head(c.rows);
+            for (VertexConstraint& c : next.constraints[v]) {
+                const Eigen::Vector3d onFace = c.A * next.face.segment<3>(3 * static_cast<Eigen::Index>(v));
+                for (int i = 0; i < c.rows; ++i)
+                    if (c.noise[i] == 0.0)
+                        c.b[i] = onFace[i];
+            }
 
     history_.resize(current_ + 1);
     history_.push_back(std::move(next));

@@ -41,6 +41,7 @@ void Observations::addVertex(Eigen::Index vertex, const Eigen::Vector3d& xyz, do
     b.width = 3;
     b.rows = 3;
     b.P = Eigen::Matrix3d::Identity();
+    b.identity = true;
     b.y = xyz;
     b.noise.setConstant(checkedNoise(noiseVariance, "Observations::addVertex", vertex));
     blocks_.push_back(b);
@@ -93,6 +94,31 @@ void Observations::addVertexAlong(Eigen::Index vertex, const Eigen::Vector3d& di
     b.noise[0] = checkedNoise(noiseVariance, "Observations::addVertexAlong", vertex);
     blocks_.push_back(b);
     size_ += 1;
+}
+
+void Observations::addVertexRows(
+    Eigen::Index vertex, const Eigen::Matrix3d& R, int rows, const Eigen::Vector3d& values, const Eigen::Vector3d& noiseVariances)
+{
+    if (vertex < 0)
+        fail("Observations::addVertexRows: vertex ", vertex, " is negative");
+    if (rows < 1 || rows > 3)
+        fail("Observations::addVertexRows: ", rows, " rows for vertex ", vertex, " (1 to 3)");
+    const Eigen::MatrixXd used = R.topRows(rows);
+    requireFinite(used, "Observations::addVertexRows: R");
+    requireFinite(Eigen::VectorXd(values.head(rows)), "Observations::addVertexRows: values");
+    const double error = (used * used.transpose() - Eigen::MatrixXd::Identity(rows, rows)).cwiseAbs().maxCoeff();
+    if (error > 1e-9)
+        fail("Observations::addVertexRows: the rows for vertex ", vertex, " are not orthonormal (|R R^T - I| = ", error, ")");
+    Block b;
+    b.first = 3 * vertex;
+    b.width = 3;
+    b.rows = rows;
+    b.P.topRows(rows) = used;
+    b.y.head(rows) = values.head(rows);
+    for (int i = 0; i < rows; ++i)
+        b.noise[i] = checkedNoise(noiseVariances[i], "Observations::addVertexRows", vertex);
+    blocks_.push_back(b);
+    size_ += rows;
 }
 
 bool Observations::noisy() const
@@ -185,8 +211,10 @@ Eigen::MatrixXd Observations::apply(const Eigen::MatrixXd& A) const
     for (const Block& b : blocks_) {
         if (b.width == 1)
             PA.row(row) = A.row(b.first);
-        else if (b.rows == 3)
+        else if (b.identity)
             PA.middleRows<3>(row) = A.middleRows<3>(b.first);
+        else if (b.rows == 3)
+            PA.middleRows<3>(row).noalias() = b.P * A.middleRows<3>(b.first);
         else if (b.rows == 1)
             PA.row(row).noalias() = b.P.row(0) * A.middleRows<3>(b.first);
         else

@@ -62,6 +62,13 @@ public:
     /// 1e-9), e.g. the direction across a drawn line in its view plane.
     void addVertexAlong(Eigen::Index vertex, const Eigen::Vector3d& direction, double value, double noiseVariance = 0.0);
 
+    /// The first `rows` (1 to 3) rows of R measure vertex v: R t(3v .. 3v+2) = values, each row
+    /// with its own noise variance. The rows must be orthonormal (|R R^T - I| <= 1e-9 over
+    /// them), e.g. a view's x and y rows and its axis, for a position known well in the image
+    /// and poorly in depth.
+    void addVertexRows(Eigen::Index vertex, const Eigen::Matrix3d& R, int rows, const Eigen::Vector3d& values,
+        const Eigen::Vector3d& noiseVariances);
+
     /// One coordinate: t(index) = value (for vectors that are not faces, e.g. the latent
     /// vectors of the segment correlation, thesis 4.2.5).
     void addCoordinate(Eigen::Index index, double value);
@@ -103,6 +110,7 @@ private:
         Eigen::Matrix3d P = Eigen::Matrix3d::Zero();     // rows by width used
         Eigen::Vector3d y = Eigen::Vector3d::Zero();     // rows used
         Eigen::Vector3d noise = Eigen::Vector3d::Zero(); // variance of each row's measurement
+        bool identity = false;                           // P is I (addVertex): products skip it
     };
     std::vector<Block> blocks_;
     Eigen::Index size_ = 0;

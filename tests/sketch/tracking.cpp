@@ -329,20 +329,114 @@ TEST_CASE("tracking: with symmetry a stroke on one side pins the mirror vertices
         if (mean.V(v, 0) > mirror.check().planeX + 5)
             left.push_back(v);
     REQUIRE(left.size() >= 3);
-    TrackingModel tracking(t.model);
     ApplyOptions options;
     options.mirror = &mirror;
-    tracking.apply(reading(left, 0, kFront), options);
-    REQUIRE(tracking.observedVertices() == static_cast<int>(2 * left.size()));
-    for (std::uint32_t v : left) {
-        const auto& c = tracking.state().constraints[mirror.partner(v)];
-        REQUIRE(c.size() == 1);
-        REQUIRE(c[0].mirrored);
-        // The mirror constraint holds the mirror image of the rebuilt left vertex's image.
-        const Eigen::Vector3d image = mirror.mirror(tracking.face().segment<3>(3 * v));
-        const Eigen::Vector3d partner = tracking.face().segment<3>(3 * mirror.partner(v));
-        INFO("vertex " << v << " partner " << mirror.partner(v));
-        REQUIRE((c[0].A.topRows<2>() * partner - c[0].b.head<2>()).norm() < 1e-9); // projected onto the face space
-        REQUIRE((image - partner).head<2>().norm() < 1.5);
+    const StrokeReading brow = reading(left, 0, kFront);
+    for (double noise : { TrackingOptions {}.planeNoiseMm, 0.0 }) {
+        INFO("plane noise " << noise << " mm");
+        TrackingOptions to;
+        to.planeNoiseMm = noise;
+        TrackingModel tracking(t.model, to);
+        tracking.apply(brow, options);
+        REQUIRE(tracking.observedVertices() == static_cast<int>(2 * left.size()));
+        for (size_t i = 0; i < left.size(); ++i) {
+            const std::uint32_t v = left[i];
+            const auto& c = tracking.state().constraints[mirror.partner(v)];
+            REQUIRE(c.size() == 1);
+            REQUIRE(c[0].mirrored);
+            const Eigen::Vector3d image = mirror.mirror(tracking.face().segment<3>(3 * v));
+            const Eigen::Vector3d partner = tracking.face().segment<3>(3 * mirror.partner(v));
+            INFO("vertex " << v << " partner " << mirror.partner(v));
+            if (noise > 0) // the mirror image of what the stroke measured
+                REQUIRE((c[0].A.topRows<2>() * mirror.mirror(brow.observations[i].position) - c[0].b.head<2>()).norm() < 1e-9);
+            else // exact rows: the rebuilt partner's image, projected onto the face space
+                REQUIRE((c[0].A.topRows<2>() * partner - c[0].b.head<2>()).norm() < 1e-9);
+            REQUIRE((image - partner).head<2>().norm() < 1.5);
+        }
     }
+}
+
+TEST_CASE("tracking: noisy constraints combine by their weights and keep what the stroke measured")
+{
+    const Eigen::Vector3d x(3, -2, 7);
+    VertexConstraint a, b;
+    a.rows = b.rows = 2;
+    a.A.topRows<2>() = kFront;
+    a.b.head<2>() = kFront * x;
+    a.noise << 1.0, 1.0, 0.0;
+    b.A.topRows<2>() = kProfile;
+    b.b.head<2>() = kProfile * (x + Eigen::Vector3d(0, 1, 0)); // y disagrees by 1 mm
+    b.noise << 4.0, 4.0, 0.0;
+    stats::Observations obs;
+    addCombined(obs, 5, { a, b });
+    REQUIRE(obs.size() == 3);
+    // Along x only the front measures (variance 1), along z only the profile (4); y is the
+    // inverse-variance mean of -2 and -1 with variance 1 / (1 + 1/4).
+    const Eigen::MatrixXd P = obs.denseP(18).middleCols<3>(15);
+    const Eigen::Vector3d position = P.transpose() * obs.values();
+    CHECK((position - Eigen::Vector3d(3, -1.8, 7)).norm() < 1e-9);
+    const Eigen::Matrix3d covariance = P.transpose() * obs.noiseVariances().asDiagonal() * P;
+    CHECK((covariance - Eigen::Vector3d(1.0, 0.8, 4.0).asDiagonal().toDenseMatrix()).norm() < 1e-9);
+    // A noisy row beside an exact one (two across-stroke rows of one direction): the exact one wins.
+    VertexConstraint exact = a, loose = a;
+    exact.rows = loose.rows = 1;
+    exact.noise.setZero();
+    loose.b[0] = 5;
+    stats::Observations pinned;
+    addCombined(pinned, 5, { exact, loose });
+    REQUIRE(pinned.size() == 1);
+    CHECK(std::abs(pinned.values()[0]) == Approx(3).margin(1e-6));
+    CHECK(pinned.noiseVariances()[0] < 1e-7);
+
+    // In the tracking model, a noisy row keeps the stroke's value after later strokes rebuild
+    // the face (step 4 moves only exact rows).
+    const auto& t = test::trainedSynth();
+    const auto lips = contourVertices("lip"), brows = contourVertices("eyebrow");
+    TrackingModel tracking(t.model);
+    const StrokeReading lip = reading(lips, 2, kFront, Eigen::Vector3d(0, 0.5, 0));
+    tracking.apply(lip);
+    tracking.apply(reading(brows, 2, kFront));
+    for (size_t i = 0; i < lips.size(); ++i) {
+        const auto& c = tracking.state().constraints[lips[i]];
+        REQUIRE(c.size() == 1);
+        CHECK((c[0].b.head<2>() - kFront * lip.observations[i].position).norm() < 1e-12);
+        CHECK(c[0].noise.head<2>() == Eigen::Vector2d::Constant(std::pow(TrackingOptions {}.planeNoiseMm, 2)));
+    }
+}
+
+TEST_CASE("tracking: with the robust passes points read onto the wrong vertices bend the face less")
+{
+    const auto& t = test::trainedSynth();
+    const auto lips = contourVertices("lip");
+    REQUIRE(lips.size() >= 8);
+    // The lips where face 3 has them, but every fourth point read 8 mm off (wrong candidates).
+    const StrokeReading clean = reading(lips, 3, kFront);
+    StrokeReading wrongly = clean;
+    std::vector<bool> wrong(lips.size(), false);
+    for (size_t i = 0; i < lips.size(); i += 4) {
+        wrong[i] = true;
+        wrongly.observations[i].position += Eigen::Vector3d(0, 8, 0);
+    }
+    // The mean error of the lip vertices read rightly.
+    auto errorOfOthers = [&](const StrokeReading& r, int passes) {
+        TrackingOptions o;
+        o.robustPasses = passes;
+        TrackingModel tracking(t.model, o);
+        tracking.apply(r);
+        double sum = 0;
+        for (size_t i = 0; i < lips.size(); ++i)
+            if (!wrong[i])
+                sum += (tracking.face().segment<3>(3 * lips[i]) - t.testSkin.row(3).segment<3>(3 * lips[i]).transpose()).norm();
+        return sum / static_cast<double>(std::count(wrong.begin(), wrong.end(), false));
+    };
+    const double base = errorOfOthers(clean, 0), plain = errorOfOthers(wrongly, 0), robust = errorOfOthers(wrongly, 2);
+    INFO("lip error: " << base << " mm read rightly; with the wrong points " << plain << " mm, " << robust << " mm with the robust passes");
+    REQUIRE(plain > base + 0.1); // the wrong points do harm ...
+    CHECK(robust - base < 0.5 * (plain - base)); // ... of which the robust passes undo more than half
+    TrackingOptions bad;
+    bad.robustK = 0;
+    REQUIRE_THROWS_WITH(TrackingModel(t.model, bad), Catch::Contains("robustK"));
+    bad = {};
+    bad.planeNoiseMm = std::numeric_limits<double>::quiet_NaN();
+    REQUIRE_THROWS_WITH(TrackingModel(t.model, bad), Catch::Contains("planeNoiseMm"));
 }

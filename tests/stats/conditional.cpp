@@ -249,3 +249,43 @@ TEST_CASE("conditional: noisy measurements match the dense Gaussian formulas and
     REQUIRE_THROWS_WITH(bad.addVertexAlong(2, d, 0.0, std::numeric_limits<double>::quiet_NaN()), Catch::Contains("noise variance"));
     REQUIRE(bad.empty());
 }
+
+TEST_CASE("conditional: rows of any orthonormal frame measure a vertex, each with its own noise")
+{
+    Random random(43);
+    const Ppca model = randomPpca(random, 24, 3, 2.0, 1.0, 0.3);
+    const Eigen::VectorXd t = model.mean + model.W * random.normalMatrix(3, 1);
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    const Eigen::Vector3d p = t.segment<3>(6) + Eigen::Vector3d(0.2, -0.1, 0.3);
+
+    // Three rows of noise 0 are the vertex itself; two are its image in the view of R.
+    Observations rows, vertex;
+    rows.addVertexRows(2, R, 3, R * p, Eigen::Vector3d::Zero());
+    vertex.addVertex(2, p);
+    CHECK((conditionalMean(model, rows, condition(model, rows)) - conditionalMean(model, vertex, condition(model, vertex))).norm() < 1e-9);
+    Observations two, image;
+    two.addVertexRows(2, R, 2, R * p, Eigen::Vector3d(0.5, 2.0, 0.0));
+    image.addProjectedVertex(2, R.topRows<2>(), R.topRows<2>() * p, Eigen::Vector2d(0.5, 2.0));
+    REQUIRE(two.size() == 2);
+    CHECK(two.noiseVariances() == image.noiseVariances());
+    CHECK((conditionalMean(model, two, condition(model, two)) - conditionalMean(model, image, condition(model, image))).norm() < 1e-12);
+
+    // Each row's noise counts: the dense Gaussian formulas.
+    Observations noisy;
+    noisy.addVertexRows(2, R, 3, R * p, Eigen::Vector3d(0.1, 1.0, 4.0));
+    const Eigen::MatrixXd C = model.sigma2 * Eigen::MatrixXd::Identity(24, 24) + model.W * model.W.transpose();
+    const Eigen::MatrixXd Pd = noisy.denseP(24);
+    const Eigen::MatrixXd S = Pd * C * Pd.transpose() + Eigen::MatrixXd(noisy.noiseVariances().asDiagonal());
+    const Eigen::VectorXd expected = model.mean + C * Pd.transpose() * S.ldlt().solve(noisy.values() - Pd * model.mean);
+    CHECK((conditionalMean(model, noisy, condition(model, noisy)) - expected).norm() < 1e-9);
+
+    Observations bad;
+    Eigen::Matrix3d skew = R;
+    skew(1, 0) += 0.1;
+    REQUIRE_THROWS_WITH(bad.addVertexRows(2, skew, 2, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), Catch::Contains("orthonormal"));
+    REQUIRE_THROWS_WITH(bad.addVertexRows(2, R, 4, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), Catch::Contains("4 rows"));
+    REQUIRE_THROWS_WITH(bad.addVertexRows(2, R, 1, Eigen::Vector3d(std::numeric_limits<double>::infinity(), 0, 0), Eigen::Vector3d::Zero()),
+        Catch::Contains("values"));
+    REQUIRE_THROWS_WITH(bad.addVertexRows(2, R, 2, Eigen::Vector3d::Zero(), Eigen::Vector3d(0, -2, 0)), Catch::Contains("noise variance -2"));
+    REQUIRE(bad.empty());
+}
