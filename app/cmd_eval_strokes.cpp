@@ -25,10 +25,10 @@ namespace {
 struct EvalStrokesCommand {
     std::string model, dataset, json, output, views = "front,profile,34", mappers = "nearest,heuristic,hmm,simple";
     double noise = 1.0, extreme = 1.0, errorScale = 10.0;
-    int size = 1024, renders = 2, maxFaces = 0, similarFaces = 0, rereads = 0;
+    int size = 1024, renders = 2, maxFaces = 0, similarFaces = sketch::MapperParams {}.similarFaces, rereads = 0;
     std::uint64_t seed = 1;
     bool noCorrelation = false, quiet = false, noProject = false, ownContours = false, thesisObservations = false;
-    std::string oracle = "none";
+    std::string oracle = "none", faces = "test";
     double supersedeRadius = sketch::TrackingOptions {}.supersedeRadius;
     double planeNoise = sketch::TrackingOptions {}.planeNoiseMm, depthNoise = sketch::TrackingOptions {}.depthNoiseMm;
     int robustPasses = sketch::TrackingOptions {}.robustPasses;
@@ -70,8 +70,17 @@ void runEvalStrokes(const EvalStrokesCommand& c)
     Stopwatch clock;
     const stats::FaceModel m = stats::loadFaceModel(c.model);
     SketchData d = loadSketchData(c.dataset, &m);
+    if (c.faces == "contour") {
+        // Fitting parameters: held-out faces that are not the test faces, and not in the
+        // cloud, so that no face offers its own contours as candidates.
+        d.candidateFaces.resize(d.trainNames.size());
+        d.testNames.clear();
+        d.testFaces = skinFaces(d.dataset, dataset::Role::Contour, d.triangles, &d.testNames);
+    } else if (c.faces != "test") {
+        fail("--faces: '", c.faces, "' is neither test nor contour");
+    }
     if (d.testFaces.empty())
-        fail(c.dataset, ": no `test` samples to evaluate on");
+        fail(c.dataset, ": no `", c.faces, "` samples to evaluate on");
     if (c.maxFaces > 0 && static_cast<int>(d.testFaces.size()) > c.maxFaces) {
         d.testFaces.resize(static_cast<size_t>(c.maxFaces));
         d.testNames.resize(static_cast<size_t>(c.maxFaces));
@@ -134,7 +143,7 @@ void runEvalStrokes(const EvalStrokesCommand& c)
             { "robust_passes", c.robustPasses }, { "robust_k", c.robustK },
             { "project_onto_face_space", !c.noProject }, { "view_plane_only", o.params.viewPlaneOnly }, { "own_contours", c.ownContours },
             { "across_stroke", o.params.acrossStrokeOnly }, { "similar_faces", c.similarFaces }, { "rereads", c.rereads },
-            { "mapper_params", c.mapperParams }, { "oracle", c.oracle }, { "results", records } };
+            { "mapper_params", c.mapperParams }, { "oracle", c.oracle }, { "faces", c.faces }, { "results", records } };
         writeFileAtomically(c.json, [&](std::ostream& out) { out << doc.dump(1) << "\n"; });
         std::cout << "wrote " << c.json << "\n";
     }
@@ -180,6 +189,10 @@ void addEvalStrokesCommand(CLI::App& eval)
         ->check(CLI::Range(-10.0, 10.0));
     cmd->add_option("--size", c->size, "Viewport size of the strokes, pixels")->capture_default_str()->check(CLI::Range(64, 8192));
     cmd->add_option("--seed", c->seed, "Seed of the simulated strokes")->capture_default_str();
+    cmd->add_option("--faces", c->faces,
+           "Which faces are sketched: test, or contour (to fit parameters on: the contour-role faces, with a cloud of the train "
+           "faces only)")
+        ->capture_default_str();
     cmd->add_option("--max-faces", c->maxFaces, "Sketch only the first N test faces (0: all)")->check(CLI::Range(0, 100000));
     cmd->add_flag("--no-correlation", c->noCorrelation, "Unmeasured segments keep the mean face");
     cmd->add_option("--supersede-radius", c->supersedeRadius, "Tracking: older constraints this near a new stroke's line are replaced, mm")
