@@ -62,6 +62,17 @@ if(NOT last STREQUAL "all")
   message(FATAL_ERROR "the last record is view ${last}, expected all")
 endif()
 
+# The fitting faces: the contour-role faces are sketched (11 here), with the train faces' cloud.
+run(eval strokes ${WORK}/faces.model ${WORK}/faces --views front --mappers hmm --faces contour --max-faces 3 --json ${WORK}/fit.json -q)
+file(READ ${WORK}/fit.json fit)
+string(JSON faces GET "${fit}" results 0 faces)
+string(JSON which GET "${fit}" faces)
+string(JSON ratio GET "${fit}" results 0 ratio)
+if(NOT faces EQUAL 3 OR NOT which STREQUAL "contour" OR NOT ratio LESS 1.0)
+  message(FATAL_ERROR "eval strokes --faces contour: ${faces} ${which} faces, ratio ${ratio}")
+endif()
+expect_failure("--faces: 'train' is neither test nor contour" eval strokes ${WORK}/faces.model ${WORK}/faces --faces train -q)
+
 # Bad sessions: truncated, wrong version, a missing model; a missing sample.
 string(SUBSTRING "${session}" 0 300 cut)
 file(WRITE ${WORK}/cut.json "${cut}")
