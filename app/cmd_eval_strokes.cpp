@@ -139,11 +139,11 @@ void runEvalStrokes(const EvalStrokesCommand& c)
                 { "across_mm", r.acrossMm }, { "within_1mm", r.within1Mm }, { "within_3mm", r.within3Mm } });
         const nlohmann::json doc { { "model", c.model }, { "dataset", c.dataset }, { "vertices", m.vertexCount() },
             { "image_size", c.size }, { "seed", c.seed }, { "correlation", !c.noCorrelation }, { "supersede_radius_mm", c.supersedeRadius },
-            { "plane_noise_mm", c.planeNoise }, { "depth_noise_mm", c.depthNoise },
-            { "robust_passes", c.robustPasses }, { "robust_k", c.robustK },
-            { "project_onto_face_space", !c.noProject }, { "view_plane_only", o.params.viewPlaneOnly }, { "own_contours", c.ownContours },
-            { "across_stroke", o.params.acrossStrokeOnly }, { "similar_faces", c.similarFaces }, { "rereads", c.rereads },
-            { "mapper_params", c.mapperParams }, { "oracle", c.oracle }, { "faces", c.faces }, { "results", records } };
+            { "plane_noise_mm", c.planeNoise }, { "depth_noise_mm", c.depthNoise }, { "robust_passes", c.robustPasses },
+            { "robust_k", c.robustK }, { "project_onto_face_space", !c.noProject }, { "view_plane_only", o.params.viewPlaneOnly },
+            { "own_contours", c.ownContours }, { "across_stroke", o.params.acrossStrokeOnly }, { "similar_faces", c.similarFaces },
+            { "rereads", c.rereads }, { "mapper_params", c.mapperParams }, { "oracle", c.oracle }, { "faces", c.faces },
+            { "results", records } };
         writeFileAtomically(c.json, [&](std::ostream& out) { out << doc.dump(1) << "\n"; });
         std::cout << "wrote " << c.json << "\n";
     }

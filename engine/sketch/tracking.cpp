@@ -63,9 +63,8 @@ void addCombined(stats::Observations& observations, Eigen::Index vertex, const s
 {
     if (constraints.empty())
         return;
-    const bool noisy = std::any_of(constraints.begin(), constraints.end(), [](const VertexConstraint& c) {
-        return (c.noise.head(c.rows).array() > 0.0).any();
-    });
+    const bool noisy = std::any_of(
+        constraints.begin(), constraints.end(), [](const VertexConstraint& c) { return (c.noise.head(c.rows).array() > 0.0).any(); });
     if (noisy) {
         addWeighted(observations, vertex, constraints);
         return;

@@ -66,8 +66,8 @@ public:
     /// with its own noise variance. The rows must be orthonormal (|R R^T - I| <= 1e-9 over
     /// them), e.g. a view's x and y rows and its axis, for a position known well in the image
     /// and poorly in depth.
-    void addVertexRows(Eigen::Index vertex, const Eigen::Matrix3d& R, int rows, const Eigen::Vector3d& values,
-        const Eigen::Vector3d& noiseVariances);
+    void addVertexRows(
+        Eigen::Index vertex, const Eigen::Matrix3d& R, int rows, const Eigen::Vector3d& values, const Eigen::Vector3d& noiseVariances);
 
     /// One coordinate: t(index) = value (for vectors that are not faces, e.g. the latent
     /// vectors of the segment correlation, thesis 4.2.5).

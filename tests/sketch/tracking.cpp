@@ -431,7 +431,7 @@ TEST_CASE("tracking: with the robust passes points read onto the wrong vertices 
     };
     const double base = errorOfOthers(clean, 0), plain = errorOfOthers(wrongly, 0), robust = errorOfOthers(wrongly, 2);
     INFO("lip error: " << base << " mm read rightly; with the wrong points " << plain << " mm, " << robust << " mm with the robust passes");
-    REQUIRE(plain > base + 0.1); // the wrong points do harm ...
+    REQUIRE(plain > base + 0.1);                 // the wrong points do harm ...
     CHECK(robust - base < 0.5 * (plain - base)); // ... of which the robust passes undo more than half
     TrackingOptions bad;
     bad.robustK = 0;

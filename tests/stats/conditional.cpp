@@ -286,6 +286,7 @@ TEST_CASE("conditional: rows of any orthonormal frame measure a vertex, each wit
     REQUIRE_THROWS_WITH(bad.addVertexRows(2, R, 4, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), Catch::Contains("4 rows"));
     REQUIRE_THROWS_WITH(bad.addVertexRows(2, R, 1, Eigen::Vector3d(std::numeric_limits<double>::infinity(), 0, 0), Eigen::Vector3d::Zero()),
         Catch::Contains("values"));
-    REQUIRE_THROWS_WITH(bad.addVertexRows(2, R, 2, Eigen::Vector3d::Zero(), Eigen::Vector3d(0, -2, 0)), Catch::Contains("noise variance -2"));
+    REQUIRE_THROWS_WITH(
+        bad.addVertexRows(2, R, 2, Eigen::Vector3d::Zero(), Eigen::Vector3d(0, -2, 0)), Catch::Contains("noise variance -2"));
     REQUIRE(bad.empty());
 }
