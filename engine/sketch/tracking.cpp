@@ -313,20 +313,33 @@ void TrackingModel::apply(const StrokeReading& reading, const ApplyOptions& opti
     stats::ReconstructOptions ro;
     ro.cleanUp = options_.cleanUp;
     ro.correlation = options.correlation ? options_.correlation : stats::Correlation::Off;
+    // The passes before the last need the face only at the constrained vertices, where the
+    // joint model's conditional mean gives it without rebuilding the whole face
+    // (stats::reconstructAt).
     std::vector<std::vector<VertexConstraint>> weighted = next.constraints;
+    std::vector<int> constrained, slot(weighted.size(), -1);
+    for (size_t v = 0; v < weighted.size(); ++v)
+        if (!weighted[v].empty()) {
+            slot[v] = static_cast<int>(constrained.size());
+            constrained.push_back(static_cast<int>(v));
+        }
     for (int pass = 0;; ++pass) {
         stats::Observations obs;
         for (size_t v = 0; v < weighted.size(); ++v)
             addCombined(obs, static_cast<Eigen::Index>(v), weighted[v]);
-        next.face = stats::reconstruct(model_, obs, ro).face;
-        if (!next.face.allFinite())
-            fail("tracking: the face model returned a non-finite face for this stroke");
-        if (pass == options_.robustPasses)
+        if (pass == options_.robustPasses) {
+            next.face = stats::reconstruct(model_, obs, ro).face;
+            if (!next.face.allFinite())
+                fail("tracking: the face model returned a non-finite face for this stroke");
             break;
+        }
+        const Eigen::VectorXd at = stats::reconstructAt(model_, obs, constrained, ro);
+        if (!at.allFinite())
+            fail("tracking: the face model returned a non-finite face for this stroke");
         for (size_t v = 0; v < weighted.size(); ++v)
             for (size_t k = 0; k < weighted[v].size(); ++k) {
                 const VertexConstraint& c = next.constraints[v][k];
-                const Eigen::Vector3d r = c.A * next.face.segment<3>(3 * static_cast<Eigen::Index>(v)) - c.b;
+                const Eigen::Vector3d r = c.A * at.segment<3>(3 * slot[v]) - c.b;
                 for (int i = 0; i < c.rows; ++i)
                     if (c.noise[i] > 0.0) {
                         // Huber's weight: 1 within robustK sigma, falling as 1 / residual beyond.

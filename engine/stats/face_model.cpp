@@ -268,4 +268,47 @@ Reconstruction reconstruct(const FaceModel& model, const Observations& observati
     return result;
 }
 
+Eigen::VectorXd reconstructAt(
+    const FaceModel& model, const Observations& observations, const std::vector<int>& vertices, const ReconstructOptions& options)
+{
+    const Eigen::Index nv = model.vertexCount();
+    std::vector<int> local(static_cast<size_t>(nv), -1);
+    for (size_t i = 0; i < vertices.size(); ++i) {
+        if (vertices[i] < 0 || vertices[i] >= nv)
+            fail("reconstructAt: vertex ", vertices[i], " outside [0, ", nv, ")");
+        local[static_cast<size_t>(vertices[i])] = static_cast<int>(i);
+    }
+    Eigen::VectorXd out(3 * static_cast<Eigen::Index>(vertices.size()));
+    if (options.correlation != Correlation::Joint || model.joint.size() == 0) {
+        const Eigen::VectorXd face = reconstruct(model, observations, options).face;
+        for (size_t i = 0; i < vertices.size(); ++i)
+            out.segment<3>(3 * static_cast<Eigen::Index>(i)) = face.segment<3>(3 * vertices[i]);
+        return out;
+    }
+    observations.validate(3 * nv);
+    // The winner as infer() picks it, then its conditional mean on the rows of `vertices`
+    // only: a PPCA restricted to some coordinates is the same PPCA's rows there.
+    Eigen::Index winner = 0;
+    ComponentPosterior best;
+    for (Eigen::Index k = 0; k < model.joint.size(); ++k) {
+        ComponentPosterior post = condition(model.joint.components[static_cast<size_t>(k)], observations);
+        post.logPrior = std::log(model.joint.priors(k));
+        if (k == 0 || post.score() > best.score()) {
+            best = std::move(post);
+            winner = k;
+        }
+    }
+    const Ppca& p = model.joint.components[static_cast<size_t>(winner)];
+    Ppca rows;
+    rows.sigma2 = p.sigma2;
+    rows.mean.resize(out.size());
+    rows.W.resize(out.size(), p.latentDim());
+    for (size_t i = 0; i < vertices.size(); ++i) {
+        const Eigen::Index at = 3 * static_cast<Eigen::Index>(i);
+        rows.mean.segment<3>(at) = p.mean.segment<3>(3 * vertices[i]);
+        rows.W.middleRows<3>(at) = p.W.middleRows<3>(3 * vertices[i]);
+    }
+    return conditionalMean(rows, observations.restrict(local), best);
+}
+
 } // namespace facesketch::stats

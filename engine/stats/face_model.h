@@ -160,4 +160,13 @@ std::string describe(const FaceModel& model);
 /// whole head with its rigid parts: model/head_assembly.h reconstructHead.
 Reconstruction reconstruct(const FaceModel& model, const Observations& observations, const ReconstructOptions& options = {});
 
+/// The joint model's conditional mean at `vertices` only, 3 values each in that order: the
+/// face step 2's Joint correlation infers there, before the clean-up and the blend. For callers
+/// that need the face only where it was measured (the tracking model's robust passes) in
+/// O(o q^2 + |vertices| q) instead of reconstruct's O(d q). Without Joint correlation (or a
+/// joint model), reconstruct's face at those vertices. Throws Error for a vertex outside the
+/// model.
+Eigen::VectorXd reconstructAt(
+    const FaceModel& model, const Observations& observations, const std::vector<int>& vertices, const ReconstructOptions& options = {});
+
 } // namespace facesketch::stats

@@ -232,3 +232,36 @@ TEST_CASE("face_model: measured vertices are kept without clean-up, and bad inpu
     bad(2, 5) = std::nan("");
     REQUIRE_THROWS_WITH(trainFaceModel(bad, gridTriangles(), kNoseTip, smallOptions()), Catch::Contains("faces(2, 5)"));
 }
+
+TEST_CASE("face_model: reconstructAt is the joint conditional mean at the asked vertices")
+{
+    const Trained& t = trained();
+    const Eigen::VectorXd truth = t.test.row(1).transpose();
+    const Eigen::Matrix<double, 2, 3> front = (Eigen::Matrix<double, 2, 3>() << 1, 0, 0, 0, 1, 0).finished();
+    Observations obs;
+    std::vector<int> at;
+    for (int v = 0; v < kSide * kSide; v += 7) {
+        if (v % 2 == 0)
+            obs.addVertex(v, truth.segment<3>(3 * v), 0.5);
+        else
+            obs.addProjectedVertex(v, front, front * truth.segment<3>(3 * v));
+        at.push_back(v);
+    }
+    at.push_back(kNoseTip); // one vertex nobody measured
+    // Without the clean-up, the blend of segments cut from one joint face is that face.
+    ReconstructOptions raw;
+    raw.cleanUp = false;
+    const Eigen::VectorXd whole = reconstruct(t.model, obs, raw).face;
+    const Eigen::VectorXd some = reconstructAt(t.model, obs, at, raw);
+    REQUIRE(some.size() == 3 * static_cast<Eigen::Index>(at.size()));
+    for (size_t i = 0; i < at.size(); ++i)
+        CHECK((some.segment<3>(3 * static_cast<Eigen::Index>(i)) - whole.segment<3>(3 * at[i])).norm() < 1e-9);
+    // Other correlations: reconstruct's face, picked at the vertices.
+    ReconstructOptions thesis;
+    thesis.correlation = Correlation::Thesis;
+    const Eigen::VectorXd full = reconstruct(t.model, obs, thesis).face;
+    const Eigen::VectorXd picked = reconstructAt(t.model, obs, at, thesis);
+    for (size_t i = 0; i < at.size(); ++i)
+        CHECK(picked.segment<3>(3 * static_cast<Eigen::Index>(i)) == full.segment<3>(3 * at[i]));
+    REQUIRE_THROWS_WITH(reconstructAt(t.model, obs, { kSide * kSide }), Catch::Contains("vertex " + std::to_string(kSide * kSide)));
+}
