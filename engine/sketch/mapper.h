@@ -110,9 +110,9 @@ struct MapperParams {
     /// has it, so the vertex under a stroke point is more often the right one.
     /// 80 (0 before 2 December, evening): with the tracking model's noisy rows and robust
     /// passes it helps the HMM on the fitting faces (`eval strokes --faces contour`, 12 faces,
-    /// 1 px noise, front / profile / 34 / all): synthetic high set 0.501 / 0.516 / 0.466 /
-    /// 0.294 -> 0.468 / 0.529 / 0.389 / 0.223, ICT import 0.728 / 0.553 / 0.586 / 0.503 ->
-    /// 0.686 / 0.512 / 0.560 / 0.445 (60 and 110 faces within 0.04 on the synthetic set).
+    /// 1 px noise, front / profile / 34 / all): synthetic high set 0.504 / 0.526 / 0.486 /
+    /// 0.302 -> 0.469 / 0.529 / 0.391 / 0.221, ICT import 0.730 / 0.554 / 0.582 / 0.506 ->
+    /// 0.686 / 0.521 / 0.545 / 0.454 (60 and 110 faces were within 0.04 on the synthetic set).
     int similarFaces = 80;
 
     // --- HMM (4.8.5) ---

@@ -21,7 +21,9 @@
 //      with noisy rows as noisy measurements; then, beyond the thesis, rows the face misses by
 //      far are down-weighted and the face rebuilt again (robustPasses), so a point read onto
 //      the wrong vertex, or strokes that disagree, bend the face less than the rows the model
-//      can agree with;
+//      can agree with. The passes before the last judge the misses on the joint model's
+//      conditional mean at the constrained vertices only (stats::reconstructAt), so they cost
+//      O(o q^2) each, not a whole face;
 //   4. the exact constraints are projected onto the face space (4.7.3): each one's b becomes A
 //      times the rebuilt vertex, so the next stroke starts from a structure the model can
 //      express. Noisy rows keep what the stroke measured: projecting them after every stroke
@@ -59,10 +61,10 @@ struct TrackingOptions {
     /// (stats::Observations noise variances), and is not replaced by the face in step 4.
     /// 1.5 mm here, with robustK 0.5 and 3 passes (not in the thesis), fitted on the fitting
     /// faces (`eval strokes --faces contour`: 12 contour-role faces, a cloud of the train faces,
-    /// synthetic high set, 1 px noise, the HMM): from 0.551 / 0.572 / 0.570 / 0.471 of the mean
-    /// face's error (front / profile / 34 / all views; rows pinned and projected, no robust
-    /// pass) to 0.501 / 0.516 / 0.466 / 0.294. Nearby values (1-2 mm, K 0.35-0.7, 2-4 passes)
-    /// are within 0.04 of these; docs/sketching.md has the test faces.
+    /// synthetic high set, 1 px noise, the HMM with the whole cloud): from 0.551 / 0.572 /
+    /// 0.570 / 0.471 of the mean face's error (front / profile / 34 / all views; rows pinned
+    /// and projected, no robust pass) to 0.504 / 0.526 / 0.486 / 0.302. Nearby values (1-2 mm,
+    /// K 0.35-0.7, 2-4 passes) were within 0.04 of these; docs/sketching.md has the test faces.
     double planeNoiseMm = 1.5;
     double depthNoiseMm = 0.0;
     /// Step 3, robust: after rebuilding, a noisy row the face misses by more than `robustK`
