@@ -121,15 +121,16 @@ TrackingModel::TrackingModel(const stats::FaceModel& model, const TrackingOption
 {
     if (model.meanFace.size() == 0 || model.meanFace.size() % 3 != 0)
         fail("TrackingModel: the model has no mean face");
-    if (!(options.supersedeRadius >= 0) || !std::isfinite(options.supersedeRadius))
+    // isfinite first: an ordered comparison with NaN raises FE_INVALID (a trap in debug tests).
+    if (!std::isfinite(options.supersedeRadius) || options.supersedeRadius < 0)
         fail("TrackingModel: supersedeRadius must be a finite distance >= 0 mm, found ", options.supersedeRadius);
-    if (!(options.supersedeAngleDeg >= 0 && options.supersedeAngleDeg <= 180))
+    if (!std::isfinite(options.supersedeAngleDeg) || options.supersedeAngleDeg < 0 || options.supersedeAngleDeg > 180)
         fail("TrackingModel: supersedeAngleDeg must lie in [0, 180], found ", options.supersedeAngleDeg);
-    if (options.robustPasses < 0 || !(options.robustK > 0) || !std::isfinite(options.robustK))
+    if (options.robustPasses < 0 || !std::isfinite(options.robustK) || options.robustK <= 0)
         fail("TrackingModel: robustPasses must be >= 0 and robustK a finite number > 0, found ", options.robustPasses, " and ",
             options.robustK);
     for (const auto& [name, sigma] : { std::pair { "planeNoiseMm", options.planeNoiseMm }, { "depthNoiseMm", options.depthNoiseMm } })
-        if (!(sigma >= 0) || !std::isfinite(sigma))
+        if (!std::isfinite(sigma) || sigma < 0)
             fail("TrackingModel: ", name, " must be a finite distance >= 0 mm, found ", sigma);
     TrackingState start;
     start.constraints.resize(static_cast<size_t>(model.vertexCount()));

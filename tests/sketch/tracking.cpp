@@ -439,4 +439,10 @@ TEST_CASE("tracking: with the robust passes points read onto the wrong vertices 
     bad = {};
     bad.planeNoiseMm = std::numeric_limits<double>::quiet_NaN();
     REQUIRE_THROWS_WITH(TrackingModel(t.model, bad), Catch::Contains("planeNoiseMm"));
+    bad = {};
+    bad.supersedeRadius = std::numeric_limits<double>::quiet_NaN();
+    REQUIRE_THROWS_WITH(TrackingModel(t.model, bad), Catch::Contains("supersedeRadius"));
+    bad = {};
+    bad.supersedeAngleDeg = std::numeric_limits<double>::infinity();
+    REQUIRE_THROWS_WITH(TrackingModel(t.model, bad), Catch::Contains("supersedeAngleDeg"));
 }
