@@ -160,7 +160,7 @@ std::string describe(const FaceModel& model);
 /// whole head with its rigid parts: model/head_assembly.h reconstructHead.
 Reconstruction reconstruct(const FaceModel& model, const Observations& observations, const ReconstructOptions& options = {});
 
-/// The joint model's conditional mean at `vertices` only, 3 values each in that order: the
+/// The joint model's conditional mean at `vertices` (distinct) only, 3 values each in order: the
 /// face step 2's Joint correlation infers there, before the clean-up and the blend. For callers
 /// that need the face only where it was measured (the tracking model's robust passes) in
 /// O(o q^2 + |vertices| q) instead of reconstruct's O(d q). Without Joint correlation (or a
