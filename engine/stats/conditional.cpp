@@ -286,7 +286,7 @@ Eigen::VectorXd conditionalMean(const Ppca& model, const Observations& observati
     return t;
 }
 
-Inference infer(const Mppca& model, const Observations& observations)
+Inference inferComponents(const Mppca& model, const Observations& observations)
 {
     const Eigen::Index K = model.size();
     if (K == 0 || model.priors.size() != K)
@@ -304,8 +304,14 @@ Inference infer(const Mppca& model, const Observations& observations)
     result.winner = static_cast<int>(winner);
     result.posterior = (scores.array() - top).exp();
     result.posterior /= result.posterior.sum();
-    result.reconstruction
-        = conditionalMean(model.components[static_cast<size_t>(winner)], observations, result.components[static_cast<size_t>(winner)]);
+    return result;
+}
+
+Inference infer(const Mppca& model, const Observations& observations)
+{
+    Inference result = inferComponents(model, observations);
+    const auto winner = static_cast<size_t>(result.winner);
+    result.reconstruction = conditionalMean(model.components[winner], observations, result.components[winner]);
     return result;
 }
 

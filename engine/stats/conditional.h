@@ -154,4 +154,9 @@ struct Inference {
 /// measurements the winner is the component of highest prior and the result its mean.
 Inference infer(const Mppca& model, const Observations& observations);
 
+/// infer() without the reconstruction (left empty): every component conditioned, the winner
+/// and p(k | y). For callers that need the winner's conditional mean on a few coordinates only
+/// (stats::reconstructAt), not all d of them.
+Inference inferComponents(const Mppca& model, const Observations& observations);
+
 } // namespace facesketch::stats

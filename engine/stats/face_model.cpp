@@ -285,20 +285,11 @@ Eigen::VectorXd reconstructAt(
             out.segment<3>(3 * static_cast<Eigen::Index>(i)) = face.segment<3>(3 * vertices[i]);
         return out;
     }
-    observations.validate(3 * nv);
-    // The winner as infer() picks it, then its conditional mean on the rows of `vertices`
+    // The winner as infer() picks it (condition() validates the measurements), then its conditional mean on the rows of `vertices`
     // only: a PPCA restricted to some coordinates is the same PPCA's rows there.
-    Eigen::Index winner = 0;
-    ComponentPosterior best;
-    for (Eigen::Index k = 0; k < model.joint.size(); ++k) {
-        ComponentPosterior post = condition(model.joint.components[static_cast<size_t>(k)], observations);
-        post.logPrior = std::log(model.joint.priors(k));
-        if (k == 0 || post.score() > best.score()) {
-            best = std::move(post);
-            winner = k;
-        }
-    }
-    const Ppca& p = model.joint.components[static_cast<size_t>(winner)];
+    const Inference inference = inferComponents(model.joint, observations);
+    const auto winner = static_cast<size_t>(inference.winner);
+    const Ppca& p = model.joint.components[winner];
     Ppca rows;
     rows.sigma2 = p.sigma2;
     rows.mean.resize(out.size());
@@ -308,7 +299,7 @@ Eigen::VectorXd reconstructAt(
         rows.mean.segment<3>(at) = p.mean.segment<3>(3 * vertices[i]);
         rows.W.middleRows<3>(at) = p.W.middleRows<3>(3 * vertices[i]);
     }
-    return conditionalMean(rows, observations.restrict(local), best);
+    return conditionalMean(rows, observations.restrict(local), inference.components[winner]);
 }
 
 } // namespace facesketch::stats
