@@ -60,6 +60,17 @@ double meanError(const Eigen::VectorXd& face, int testFace, const std::vector<st
     return sum / static_cast<double>(vertices.size());
 }
 
+// A constraint pinning x's image in the view plane of P, each row with `variance` (mm^2).
+VertexConstraint viewConstraint(const Eigen::Matrix<double, 2, 3>& P, const Eigen::Vector3d& x, double variance = 0.0)
+{
+    VertexConstraint c;
+    c.rows = 2;
+    c.A.topRows<2>() = P;
+    c.b.head<2>() = P * x;
+    c.noise.head<2>().setConstant(variance);
+    return c;
+}
+
 bool sameState(const TrackingState& a, const TrackingState& b)
 {
     if (a.strokes != b.strokes || a.face.size() != b.face.size() || a.constraints.size() != b.constraints.size())
@@ -218,12 +229,8 @@ TEST_CASE("tracking: strokes from two views combine into 3D measurements and a b
 TEST_CASE("tracking: two view-plane constraints combine by least squares")
 {
     const Eigen::Vector3d x(3, -2, 7);
-    VertexConstraint a, b;
-    a.rows = b.rows = 2;
-    a.A.topRows<2>() = kFront;
-    a.b.head<2>() = kFront * x;
-    b.A.topRows<2>() = kProfile;
-    b.b.head<2>() = kProfile * (x + Eigen::Vector3d(0, 1, 0)); // y disagrees by 1 mm
+    const VertexConstraint a = viewConstraint(kFront, x);
+    const VertexConstraint b = viewConstraint(kProfile, x + Eigen::Vector3d(0, 1, 0)); // y disagrees by 1 mm
     stats::Observations obs;
     addCombined(obs, 5, { a, b });
     REQUIRE(obs.size() == 3);
@@ -359,14 +366,8 @@ TEST_CASE("tracking: with symmetry a stroke on one side pins the mirror vertices
 TEST_CASE("tracking: noisy constraints combine by their weights and keep what the stroke measured")
 {
     const Eigen::Vector3d x(3, -2, 7);
-    VertexConstraint a, b;
-    a.rows = b.rows = 2;
-    a.A.topRows<2>() = kFront;
-    a.b.head<2>() = kFront * x;
-    a.noise << 1.0, 1.0, 0.0;
-    b.A.topRows<2>() = kProfile;
-    b.b.head<2>() = kProfile * (x + Eigen::Vector3d(0, 1, 0)); // y disagrees by 1 mm
-    b.noise << 4.0, 4.0, 0.0;
+    const VertexConstraint a = viewConstraint(kFront, x, 1.0);
+    const VertexConstraint b = viewConstraint(kProfile, x + Eigen::Vector3d(0, 1, 0), 4.0); // y disagrees by 1 mm
     stats::Observations obs;
     addCombined(obs, 5, { a, b });
     REQUIRE(obs.size() == 3);
