@@ -317,17 +317,21 @@ void TrackingModel::apply(const StrokeReading& reading, const ApplyOptions& opti
     // The passes before the last need the face only at the constrained vertices, where the
     // joint model's conditional mean gives it without rebuilding the whole face
     // (stats::reconstructAt).
-    std::vector<std::vector<VertexConstraint>> weighted = next.constraints;
-    std::vector<int> constrained, slot(weighted.size(), -1);
-    for (size_t v = 0; v < weighted.size(); ++v)
-        if (!weighted[v].empty()) {
+    // Without passes the constraints are used as they are, not copied.
+    std::vector<std::vector<VertexConstraint>> weighted;
+    if (options_.robustPasses > 0)
+        weighted = next.constraints;
+    const std::vector<std::vector<VertexConstraint>>& used = options_.robustPasses > 0 ? weighted : next.constraints;
+    std::vector<int> constrained, slot(used.size(), -1);
+    for (size_t v = 0; v < used.size(); ++v)
+        if (!used[v].empty()) {
             slot[v] = static_cast<int>(constrained.size());
             constrained.push_back(static_cast<int>(v));
         }
     for (int pass = 0;; ++pass) {
         stats::Observations obs;
-        for (size_t v = 0; v < weighted.size(); ++v)
-            addCombined(obs, static_cast<Eigen::Index>(v), weighted[v]);
+        for (size_t v = 0; v < used.size(); ++v)
+            addCombined(obs, static_cast<Eigen::Index>(v), used[v]);
         if (pass == options_.robustPasses) {
             next.face = stats::reconstruct(model_, obs, ro).face;
             if (!next.face.allFinite())
