@@ -54,7 +54,7 @@ void printRecords(const std::vector<evaluation::StrokeEvalRecord>& records)
               << std::setw(9) << "strokes" << std::setw(8) << "unread" << std::setw(10) << "observed" << std::setw(10) << "mean mm"
               << std::setw(14) << "mean face mm" << std::setw(8) << "ratio" << std::setw(10) << "read ms" << std::setw(10) << "apply ms"
               << std::setw(10) << "plane mm" << std::setw(10) << "depth mm" << std::setw(10) << "across mm" << std::setw(8) << "<=1mm"
-              << std::setw(8) << "<=3mm"
+              << std::setw(8) << "<=3mm" << std::setw(9) << "misread"
               << "\n";
     for (const auto& r : records)
         std::cout << std::left << std::setw(9) << r.view << std::setw(11) << r.mapper << std::right << std::setw(7) << r.faces
@@ -62,7 +62,8 @@ void printRecords(const std::vector<evaluation::StrokeEvalRecord>& records)
                   << r.observedVertices << std::setprecision(2) << std::setw(10) << r.meanMm << std::setw(14) << r.meanFaceMm
                   << std::setprecision(3) << std::setw(8) << r.ratio << std::setprecision(1) << std::setw(10) << r.readMs << std::setw(10)
                   << r.applyMs << std::setprecision(2) << std::setw(10) << r.planeMm << std::setw(10) << r.depthMm << std::setw(10)
-                  << r.acrossMm << std::setw(8) << r.within1Mm << std::setw(8) << r.within3Mm << "\n";
+                  << r.acrossMm << std::setw(8) << r.within1Mm << std::setw(8) << r.within3Mm << std::setprecision(3) << std::setw(9)
+                  << r.misread << "\n";
 }
 
 void runEvalStrokes(const EvalStrokesCommand& c)
@@ -132,11 +133,12 @@ void runEvalStrokes(const EvalStrokesCommand& c)
     if (!c.json.empty()) {
         nlohmann::json records = nlohmann::json::array();
         for (const auto& r : result.records)
-            records.push_back({ { "view", r.view }, { "mapper", r.mapper }, { "noise_px", r.noisePx }, { "faces", r.faces },
-                { "mean_mm", r.meanMm }, { "ratio", r.ratio }, { "extreme", r.extreme }, { "mean_face_mm", r.meanFaceMm },
-                { "strokes", r.strokes }, { "unread", r.unread }, { "failed", r.failed }, { "observed_vertices", r.observedVertices },
-                { "read_ms", r.readMs }, { "apply_ms", r.applyMs }, { "plane_mm", r.planeMm }, { "depth_mm", r.depthMm },
-                { "across_mm", r.acrossMm }, { "within_1mm", r.within1Mm }, { "within_3mm", r.within3Mm } });
+            records.push_back(
+                { { "view", r.view }, { "mapper", r.mapper }, { "noise_px", r.noisePx }, { "faces", r.faces }, { "mean_mm", r.meanMm },
+                    { "ratio", r.ratio }, { "extreme", r.extreme }, { "mean_face_mm", r.meanFaceMm }, { "strokes", r.strokes },
+                    { "unread", r.unread }, { "failed", r.failed }, { "observed_vertices", r.observedVertices }, { "read_ms", r.readMs },
+                    { "apply_ms", r.applyMs }, { "plane_mm", r.planeMm }, { "depth_mm", r.depthMm }, { "across_mm", r.acrossMm },
+                    { "within_1mm", r.within1Mm }, { "within_3mm", r.within3Mm }, { "misread_strokes", r.misread } });
         const nlohmann::json doc { { "model", c.model }, { "dataset", c.dataset }, { "vertices", m.vertexCount() },
             { "image_size", c.size }, { "seed", c.seed }, { "correlation", !c.noCorrelation }, { "supersede_radius_mm", c.supersedeRadius },
             { "plane_noise_mm", c.planeNoise }, { "depth_noise_mm", c.depthNoise }, { "robust_passes", c.robustPasses },

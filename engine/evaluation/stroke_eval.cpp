@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "core/stopwatch.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace facesketch::evaluation {
@@ -30,6 +31,7 @@ struct Sums {
     int faces = 0, strokes = 0, unread = 0, failed = 0;
     double planeMm = 0, depthMm = 0, within1 = 0, within3 = 0, acrossMm = 0;
     long observations = 0, across = 0;
+    int acrossStrokes = 0, misread = 0;
 };
 
 Eigen::Vector3d axisOf(const Eigen::Matrix<double, 2, 3>& P)
@@ -134,6 +136,7 @@ StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data
                     }
                     const Eigen::Matrix<double, 2, 3>& P = reading.viewPlane;
                     const Eigen::Vector3d axis = axisOf(P);
+                    std::vector<double> acrossErrors;
                     for (sketch::VertexObservation& o : reading.observations) {
                         const Eigen::Vector3d truth = traced.V.row(o.vertex).transpose();
                         const double plane = (P * (o.position - truth)).norm();
@@ -143,13 +146,20 @@ StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data
                         s.within3 += plane <= 3.0;
                         ++s.observations;
                         if (!o.acrossStroke.isZero()) {
-                            s.acrossMm += std::abs(o.acrossStroke.dot(o.position - truth));
+                            acrossErrors.push_back(std::abs(o.acrossStroke.dot(o.position - truth)));
+                            s.acrossMm += acrossErrors.back();
                             ++s.across;
                         }
                         if (options.oracle == StrokeOracle::TrueDepth)
                             o.position += axis * axis.dot(truth - o.position);
                         else if (options.oracle == StrokeOracle::TruePosition)
                             o.position = truth;
+                    }
+                    if (!acrossErrors.empty()) {
+                        const auto middle = acrossErrors.begin() + static_cast<std::ptrdiff_t>(acrossErrors.size() / 2);
+                        std::nth_element(acrossErrors.begin(), middle, acrossErrors.end());
+                        ++s.acrossStrokes;
+                        s.misread += *middle > kMisreadMm;
                     }
                     clock.restart();
                     tracking.apply(reading, apply);
@@ -217,6 +227,8 @@ StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data
             }
             if (s.across > 0)
                 r.acrossMm = s.acrossMm / static_cast<double>(s.across);
+            if (s.acrossStrokes > 0)
+                r.misread = static_cast<double>(s.misread) / s.acrossStrokes;
             result.records.push_back(r);
         }
     return result;

@@ -90,7 +90,15 @@ struct StrokeEvalRecord {
     /// Fraction of observations whose vertex's traced image lies within 1 mm / 3 mm of the
     /// stroke point in the view plane.
     double within1Mm = 0, within3Mm = 0;
+    /// Of the read strokes with observations pinned across the stroke: the fraction whose
+    /// median across-stroke error exceeds kMisreadMm, i.e. strokes read as a whole onto another
+    /// line (a lower lip onto the upper). Few, but each costs the face far more than the
+    /// scattered errors of a good reading (docs/sketching.md, "How far the front view can go").
+    double misread = 0;
 };
+
+/// The median across-stroke error (mm) above which StrokeEvalRecord::misread counts a stroke.
+inline constexpr double kMisreadMm = 1.5;
 
 /// A kept face's result (StrokeEvalOptions::keepFaces).
 struct StrokeEvalFace {

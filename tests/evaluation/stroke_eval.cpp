@@ -91,6 +91,14 @@ TEST_CASE("stroke_eval: the diagnostics: mapped vertices at their true positions
     const evaluation::StrokeEvalRecord across = evaluation::evaluateStrokes(test::device(), d, o).records.at(0);
     CHECK(across.acrossMm > 0);
     CHECK(across.acrossMm < across.planeMm);
+    // Strokes read as a whole onto another line: few for strokes drawn on the lines, most for
+    // strokes jittered by 20 px (about 5 mm), whose points are read where they were drawn.
+    CHECK(read.misread == 0); // no observation across the stroke to judge by
+    CHECK(across.misread < 0.2);
+    o.simulate.noisePx = 20;
+    const evaluation::StrokeEvalRecord jittered = evaluation::evaluateStrokes(test::device(), d, o).records.at(0);
+    INFO("misread: " << across.misread << " at 1 px, " << jittered.misread << " at 20 px");
+    CHECK(jittered.misread > 0.5);
     CHECK(evaluation::parseStrokeOracle("true-depth") == evaluation::StrokeOracle::TrueDepth);
     REQUIRE_THROWS_WITH(evaluation::parseStrokeOracle("truth"), Catch::Contains("'truth'"));
     REQUIRE_NO_VALIDATION_MESSAGES();
