@@ -39,6 +39,11 @@ enum class StrokeOracle {
                   ///< traced face's depth along the view axis (identity and in-plane error only)
     TruePosition, ///< the mapped vertices at the traced face's positions (identity error only)
 };
+// An oracle keeps each row's direction: a row across a jittered stroke then measures the true
+// position in a slightly wrong direction and passes on some of the truth along the stroke
+// (docs/sketching.md, "The across-stroke oracle leaks"). For the ceiling of rows across the
+// stroke, run it with --noise 0.
+
 
 /// "none", "true-depth", "true-position"; parseStrokeOracle throws Error naming other text.
 const char* strokeOracleName(StrokeOracle oracle);
