@@ -5,15 +5,22 @@
 #include "model/head_model.h"
 #include "test_common.h"
 
+#include <cmath>
 #include <iostream>
+#include <map>
 
 using namespace facesketch;
 
-TEST_CASE("contour_eval: a held-out face's own contours rebuild it better than the mean face")
+TEST_CASE("contour_eval: held-out faces' own contours rebuild them better than the mean face, on average and with margin")
 {
+    // The claim is the thesis' (4.5): rebuilt from its contours, a held-out face is nearer the
+    // truth than the mean face, on average. 150 identities give 12 held-out faces. Not per
+    // face: a face near the mean (mean-face error about 2.6 mm) or one whose candidate mapping
+    // strays loses to the mean face now and then (3 of 12 here, up to 1.23 times its mean-face
+    // error; docs/realism.md), and a per-face check on 5 faces passed or failed by the draw.
     test::TempDir dir;
     dataset::SynthOptions synth;
-    synth.identities = 60;
+    synth.identities = 150;
     synth.resolution = dataset::Resolution::Low;
     dataset::writeSynthDataset(dir / "faces", synth);
     const dataset::Dataset d = dataset::openDataset(dir / "faces");
@@ -51,17 +58,32 @@ TEST_CASE("contour_eval: a held-out face's own contours rebuild it better than t
     options.views = { { "front", { 0, 0 } }, { "34", { 45, 0 } } };
     options.imageSize = 512;
     const auto results = evaluation::evaluateContours(test::device(), data, options);
+    REQUIRE(data.testFaces.size() >= 10);
     REQUIRE(results.size() == data.testFaces.size() * 2 * 3);
+    // Per (view, mapping): summed errors of the rebuilt faces and of the mean face.
+    std::map<std::pair<std::string, std::string>, std::pair<double, double>> sums;
     for (const auto& r : results) {
         std::cout << r.face << " " << r.view << " " << evaluation::mappingName(r.mapping) << ": " << r.points << " points, "
                   << r.observedVertices << " vertices, mean " << r.meanError << " mm (max " << r.maxError << "), mean face "
                   << r.meanFaceMean << " mm\n";
         INFO(r.face << " " << r.view << " " << evaluation::mappingName(r.mapping));
         REQUIRE(r.points > 20);
-        if (r.mapping == evaluation::ContourMapping::KnownVertex && r.view == "front")
+        REQUIRE(std::isfinite(r.meanError));
+        // Every face: the known vertices pin it (front under half the mean face's error, as
+        // before); no mapping loses badly to the mean face.
+        if (r.mapping == evaluation::ContourMapping::KnownVertex)
             CHECK(r.meanError < 0.5 * r.meanFaceMean);
         else
-            CHECK(r.meanError < r.meanFaceMean);
+            CHECK(r.meanError < 1.5 * r.meanFaceMean);
+        auto& [rebuilt, meanFace] = sums[{ r.view, evaluation::mappingName(r.mapping) }];
+        rebuilt += r.meanError;
+        meanFace += r.meanFaceMean;
+    }
+    // On average, with margin: on main's generator the candidate mappings give 0.47-0.59 of the
+    // mean face's error, the known vertices 0.06-0.08.
+    for (const auto& [key, sum] : sums) {
+        INFO(key.first << " " << key.second << ": " << sum.first / sum.second << " of the mean face's error");
+        CHECK(sum.first < 0.75 * sum.second);
     }
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
