@@ -44,7 +44,6 @@ enum class StrokeOracle {
 // (docs/sketching.md, "The across-stroke oracle leaks"). For the ceiling of rows across the
 // stroke, run it with --noise 0.
 
-
 /// "none", "true-depth", "true-position"; parseStrokeOracle throws Error naming other text.
 const char* strokeOracleName(StrokeOracle oracle);
 StrokeOracle parseStrokeOracle(const std::string& text);
