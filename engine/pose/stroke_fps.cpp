@@ -42,6 +42,73 @@ PointHit hitWithin(const FpClusters& clusters, const std::vector<int>& allowed, 
     return hit;
 }
 
+/// Step 6 for group g: its interior FPs picked again given the sketch-plane positions of its
+/// ends read so far (the conditional Gaussian of the joint cluster covariance).
+void followEnds(const FpClusters& clusters, const std::vector<PoseStrokePoints>& strokes,
+    const std::vector<std::vector<int>>& pointCluster, std::size_t g, double endpointBonus, std::vector<IdentifiedFp>& best)
+{
+    std::vector<int> ends;
+    for (int b : clusters.boundary[g])
+        if (best[static_cast<std::size_t>(b)].fp >= 0)
+            ends.push_back(b);
+    if (ends.empty())
+        return;
+    const Eigen::MatrixXd& C = clusters.jointCovariance;
+    const Eigen::Index m = 2 * static_cast<Eigen::Index>(ends.size());
+    // The observed part: each end's two plane coordinates, A x with A = [0 .. P_b .. 0].
+    Eigen::MatrixXd AC(m, C.cols());
+    Eigen::VectorXd y(m);
+    for (std::size_t i = 0; i < ends.size(); ++i) {
+        const IdentifiedFp& end = best[static_cast<std::size_t>(ends[i])];
+        const Eigen::Index row = 2 * static_cast<Eigen::Index>(i);
+        AC.middleRows(row, 2) = end.plane * C.middleRows(3 * ends[i], 3);
+        y.segment<2>(row) = end.plane * (end.position - clusters.mean[static_cast<std::size_t>(ends[i])]);
+    }
+    Eigen::MatrixXd S(m, m);
+    for (std::size_t i = 0; i < ends.size(); ++i)
+        S.middleCols(2 * static_cast<Eigen::Index>(i), 2)
+            = AC.middleCols(3 * ends[i], 3) * best[static_cast<std::size_t>(ends[i])].plane.transpose();
+    const Eigen::LLT<Eigen::MatrixXd> llt(S);
+    if (llt.info() != Eigen::Success)
+        return; // cannot happen with minStdMm > 0; the thesis' pick stands otherwise
+    const Eigen::VectorXd weights = llt.solve(y);
+
+    for (int k : clusters.groups[g]) {
+        IdentifiedFp& fp = best[static_cast<std::size_t>(k)];
+        const auto& bounds = clusters.boundary[g];
+        if (fp.fp < 0 || fp.nudged || std::find(bounds.begin(), bounds.end(), k) != bounds.end())
+            continue;
+        const Eigen::MatrixXd cross = AC.middleCols(3 * k, 3); // m by 3: Cov(A x, x_k)
+        const Eigen::Vector3d mean = clusters.mean[static_cast<std::size_t>(k)] + cross.transpose() * weights;
+        const Eigen::Matrix3d covariance = C.block<3, 3>(3 * k, 3 * k) - cross.transpose() * llt.solve(cross);
+        const Eigen::LLT<Eigen::Matrix3d> local(covariance);
+        if (local.info() != Eigen::Success)
+            continue;
+        const double logNormaliser = -0.5 * std::log(std::pow(2 * std::numbers::pi, 3) * covariance.determinant());
+        const PoseStrokePoints& stroke = strokes[static_cast<std::size_t>(fp.stroke)];
+        const auto& hits = pointCluster[static_cast<std::size_t>(fp.stroke)];
+        const int n = static_cast<int>(stroke.world.size());
+        double bestScore = -std::numeric_limits<double>::infinity();
+        int bestPoint = -1;
+        for (int p = 0; p < n; ++p) {
+            if (hits[static_cast<std::size_t>(p)] != k)
+                continue;
+            const Eigen::Vector3d d = stroke.world[static_cast<std::size_t>(p)] - mean;
+            const double score = logNormaliser - 0.5 * d.dot(local.solve(d)) + (p == 0 || p == n - 1 ? endpointBonus : 0.0);
+            if (score > bestScore) {
+                bestScore = score;
+                bestPoint = p;
+            }
+        }
+        if (bestPoint < 0)
+            continue;
+        fp.point = bestPoint;
+        fp.position = stroke.world[static_cast<std::size_t>(bestPoint)];
+        fp.score = bestScore;
+        fp.conditioned = true;
+    }
+}
+
 } // namespace
 
 const std::vector<FpGroup>& fpGroups()
@@ -128,6 +195,13 @@ FpClusters fpClusters(const FeaturePoints& fps, const Eigen::MatrixXd& fpTrainin
         clusters.groups.push_back(members);
         clusters.boundary.push_back(ends);
     }
+    const Eigen::Index K = clusters.size();
+    Eigen::MatrixXd d(fpTraining.rows(), 3 * K);
+    for (Eigen::Index k = 0; k < K; ++k)
+        d.middleCols(3 * k, 3) = fpTraining.middleCols(3 * clusters.fp[static_cast<std::size_t>(k)], 3);
+    const Eigen::MatrixXd centred = d.rowwise() - d.colwise().mean();
+    clusters.jointCovariance = centred.transpose() * centred / static_cast<double>(d.rows());
+    clusters.jointCovariance.diagonal().array() += options.minStdMm * options.minStdMm;
     return clusters;
 }
 
@@ -151,6 +225,8 @@ FpReading identifyFps(const FpClusters& clusters, const std::vector<PoseStrokePo
     FpReading reading;
     // Best candidate per cluster over all strokes (step 5).
     std::vector<IdentifiedFp> best(static_cast<std::size_t>(clusters.size()));
+    // Per stroke and point: the cluster the point hit within the stroke's group (step 4), or -1.
+    std::vector<std::vector<int>> pointCluster(strokes.size());
     auto offer = [&](int k, const PoseStrokePoints& stroke, int s, int p, const Eigen::Vector3d& at, double score, bool nudged) {
         IdentifiedFp& b = best[static_cast<std::size_t>(k)];
         if (b.fp >= 0 && b.score >= score)
@@ -241,6 +317,7 @@ FpReading identifyFps(const FpClusters& clusters, const std::vector<PoseStrokePo
             const Eigen::Vector3d& x = stroke.world[static_cast<std::size_t>(p)];
             const double bonus = isEnd(p) ? endpointBonus : 0.0;
             const PointHit hit = hitWithin(clusters, members, x, options.maxMahalanobis);
+            pointCluster[s].push_back(hit.cluster);
             if (hit.cluster >= 0) {
                 offer(hit.cluster, stroke, si, p, x, hit.logDensity + bonus, false);
                 if (p == 0)
@@ -272,6 +349,10 @@ FpReading identifyFps(const FpClusters& clusters, const std::vector<PoseStrokePo
             }
         }
     }
+
+    if (options.followEnds)
+        for (std::size_t g = 0; g < groups.size(); ++g)
+            followEnds(clusters, strokes, pointCluster, g, endpointBonus, best);
 
     for (const IdentifiedFp& fp : best)
         if (fp.fp >= 0)

@@ -34,6 +34,14 @@
 //    endpoint's own position (a short stroke means a narrower feature).
 // 5. The best point per FP: over all strokes, the point with the highest score
 //    l_k(x) (+ log endpointWeight at an endpoint).
+// 6. Beyond the thesis: the interior FPs follow the ends. The likeliest point of a cluster
+//    along a stroke leans towards the cluster's mean, so a widened smile's lip mid-points were
+//    read 1.5 mm towards the rest face. Once the ends are read (the boundary FPs of each
+//    group, step 4), every other FP of the group is picked again among the points of its
+//    stroke that hit it in step 4, by its density *conditioned on the ends' sketch-plane
+//    positions* under the joint Gaussian of all clusters (FpClusters::jointCovariance; the
+//    conditional Gaussian of eq. 4.21 with the ends' two plane coordinates each as the
+//    observed part). Where a group's ends are not read, step 5's pick stands.
 //
 // The depth a stroke cannot know (thesis 5.3, fig. 5.8): a point's depth comes from the surface
 // it was cast onto, which may show no real pose. poseObservations() therefore passes only the
@@ -81,6 +89,11 @@ struct FpClusters {
     std::vector<double> logNormaliser;      ///< -log sqrt(det(2 pi covariance))
     std::vector<std::vector<int>> groups;   ///< per fpGroups() entry: its clusters
     std::vector<std::vector<int>> boundary; ///< per fpGroups() entry: its boundary clusters
+    /// The clusters' joint covariance (3K by 3K, cluster order, maximum likelihood over the
+    /// training poses, plus minStdMm^2 I): its 3 by 3 diagonal blocks are `covariance`, the
+    /// rest says how FPs move together (a smile's corners and lip mid-points). 96 by 96 for
+    /// the 32 sketchable FPs, so it is kept dense.
+    Eigen::MatrixXd jointCovariance;
 
     int size() const { return static_cast<int>(mean.size()); }
     /// log N(x | cluster k), in log(1/mm^3).
@@ -114,6 +127,7 @@ struct FpReadingOptions {
     double maxMahalanobis = 4.0;
     double endpointWeight = 2.0; ///< >= 1: endpoints' vote and score (steps 3-5)
     double nudgeMm = 6.0;        ///< how far a missing endpoint may move to a boundary cluster
+    bool followEnds = true;      ///< step 6 (false: the thesis' pick, step 5 alone)
 };
 
 /// An FP found in the strokes.
@@ -124,8 +138,10 @@ struct IdentifiedFp {
     Eigen::Matrix<double, 2, 3> plane; ///< the sketch plane of its stroke
     int stroke = -1;                   ///< which stroke, and which of its points
     int point = -1;
-    double score = 0;    ///< log p(x | cluster) (+ log endpointWeight at an endpoint)
+    double score = 0;    ///< log p(x | cluster) (+ log endpointWeight at an endpoint); after
+                         ///< step 6, log p(x | cluster, the group's ends)
     bool nudged = false; ///< an endpoint mapped by moving it towards a boundary cluster
+    bool conditioned = false; ///< picked in step 6, given its group's ends
 };
 
 struct FpReading {

@@ -226,6 +226,59 @@ TEST_CASE("stroke fps: an endpoint outweighs a slightly likelier interior point 
     REQUIRE(cornerAt(flat) == -30);
 }
 
+TEST_CASE("stroke fps: a widened lip's mid-points follow its corners (step 6), where the likeliest point leans inwards")
+{
+    // Training: the mouth widens or narrows (corners 8.3/8.4 by 4 mm, mid-points 8.5/8.6 by
+    // 2 mm, 8.9/8.10 by 1 mm, all along x) and every FP moves 1 mm up or down.
+    HandMade h;
+    h.training.setZero();
+    const std::map<std::string, double> widen = { { "8.3", 4 }, { "8.4", -4 }, { "8.6", 2 }, { "8.5", -2 }, { "8.10", 1 }, { "8.9", -1 } };
+    for (Eigen::Index f = 0; f < h.fps.size(); ++f) {
+        const auto w = widen.find(h.fps.names[static_cast<std::size_t>(f)]);
+        if (w != widen.end()) {
+            h.training(0, 3 * f) = w->second;
+            h.training(1, 3 * f) = -w->second;
+        }
+        h.training(2, 3 * f + 1) = 1;
+        h.training(3, 3 * f + 1) = -1;
+    }
+    const FpClusters clusters = fpClusters(h.fps, h.training, h.neutral);
+    // 8.6's joint block with the corners: Cov(x86, x83) = 4, Cov(x86, x84) = -4.
+    const int c86 = static_cast<int>(std::find(clusters.names.begin(), clusters.names.end(), "8.6") - clusters.names.begin());
+    const int c83 = static_cast<int>(std::find(clusters.names.begin(), clusters.names.end(), "8.3") - clusters.names.begin());
+    REQUIRE(clusters.jointCovariance(3 * c86, 3 * c83) == Approx(4.0));
+    REQUIRE(clusters.jointCovariance.block<3, 3>(3 * c86, 3 * c86).isApprox(clusters.covariance[static_cast<std::size_t>(c86)]));
+
+    // A mouth 3 mm wider at each corner than the rest face: as the training widens, 8.6 belongs
+    // at x = 13.5. (The ends are 3 mm from the corners' means, close enough for the endpoint
+    // bonus, log 2, to keep them at the ends: 3^2 / (2 x 10.25) = 0.44.)
+    const PoseStrokePoints stroke = line(-33, 33, 0, 1);
+    auto at = [&](const FpReadingOptions& options, const std::string& name) {
+        for (const auto& fp : identifyFps(clusters, { stroke }, options).fps)
+            if (fp.name == name)
+                return fp;
+        FAIL(name << " not found");
+        return IdentifiedFp {};
+    };
+    FpReadingOptions thesis;
+    thesis.followEnds = false;
+    // Step 5 alone: the stroke point at the cluster's mean, 2 mm inwards.
+    REQUIRE(at(thesis, "8.6").position.x() == 12);
+    REQUIRE_FALSE(at(thesis, "8.6").conditioned);
+    // Given the corners (each 3 mm out, plane x): the conditional mean is 12 + c' S^-1 y with
+    // c = (4, -4), y = (3, -3) and S = [[8 + 2.25, -8], [-8, 8 + 2.25]] (minStdMm 1.5), i.e.
+    // 12 + 24 / 18.25 = 13.3, and the nearest stroke point is 13.
+    const IdentifiedFp followed = at({}, "8.6");
+    REQUIRE(followed.conditioned);
+    REQUIRE(followed.position.x() == 13);
+    REQUIRE(at({}, "8.5").position.x() == -13);
+    // The corners themselves are the stroke's ends, unchanged by step 6.
+    REQUIRE(at({}, "8.3").position.x() == 33);
+    REQUIRE_FALSE(at({}, "8.3").conditioned);
+    // 8.1 does not move with the width: it stays at the centre.
+    REQUIRE(at({}, "8.1").position.x() == 0);
+}
+
 TEST_CASE("stroke fps: a stroke that hits no cluster, and other bad input, are errors naming the stroke or FP")
 {
     const HandMade h;
