@@ -2,6 +2,7 @@
 
 #include "core/random.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace facesketch::dataset {
@@ -23,6 +24,11 @@ const std::vector<Norm>& farkasNorms()
 }
 
 namespace {
+
+double sq(double x)
+{
+    return x * x;
+}
 
 // One Farkas measure with the shared size factor g (see face_params.h).
 double normDraw(const Norm& n, bool female, double g, double z)
@@ -107,7 +113,62 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
         b.height = 0.45 * rng.normal();
         p.detail.push_back(b);
     }
+
+    // Shape fields: symmetric ones share a factor per lattice row; antisymmetric ones are
+    // independent and smaller (faces are nearly symmetric).
+    double rowFactor[7];
+    for (double& u : rowFactor)
+        u = rng.normal();
+    constexpr double kSymmetricSd = 2.9, kAsymmetricSd = 0.9, kRowWeight = 0.5;
+    p.shapeModes.resize(kShapeFields);
+    for (int k = 0; k < kShapeFields; ++k) {
+        const double z = rng.normal();
+        p.shapeModes[static_cast<size_t>(k)]
+            = k < 28 ? kSymmetricSd * (kRowWeight * rowFactor[k / 4] + std::sqrt(1 - sq(kRowWeight)) * z) : kAsymmetricSd * z;
+    }
     return p;
+}
+
+namespace {
+constexpr double kWidth = 0.2;
+}
+
+double shapeField(int k, double theta, double phi)
+{
+    const bool symmetric = k < 28;
+    // Antisymmetric fields use the off-midline columns 1..3 of each row.
+    const int row = symmetric ? k / 4 : (k - 28) / 3;
+    const int col = symmetric ? k % 4 : 1 + (k - 28) % 3;
+    const double phiC = 0.55 - 0.25 * row, thetaC = 0.3 * col;
+    const double dPhi = sq(phi - phiC);
+    const double right = std::exp(-(sq(theta + thetaC) + dPhi) / sq(kWidth));
+    if (col == 0)
+        return right;
+    const double left = std::exp(-(sq(theta - thetaC) + dPhi) / sq(kWidth));
+    return symmetric ? left + right : left - right;
+}
+
+double shapeFieldSum(const std::vector<double>& coefficients, double theta, double phi)
+{
+    // Each bump is exp(-dtheta^2 / w^2) exp(-dphi^2 / w^2): 7 row and 7 column factors.
+    double row[7], right[4], left[4];
+    for (int j = 0; j < 7; ++j)
+        row[j] = std::exp(-sq(phi - (0.55 - 0.25 * j)) / sq(kWidth));
+    for (int c = 0; c < 4; ++c) {
+        right[c] = std::exp(-sq(theta + 0.3 * c) / sq(kWidth));
+        left[c] = std::exp(-sq(theta - 0.3 * c) / sq(kWidth));
+    }
+    const size_t n = std::min(coefficients.size(), static_cast<size_t>(kShapeFields));
+    double sum = 0;
+    for (size_t k = 0; k < n; ++k) {
+        const int i = static_cast<int>(k);
+        const bool symmetric = i < 28;
+        const int r = symmetric ? i / 4 : (i - 28) / 3;
+        const int c = symmetric ? i % 4 : 1 + (i - 28) % 3;
+        const double across = c == 0 ? right[0] : symmetric ? left[c] + right[c] : left[c] - right[c];
+        sum += coefficients[k] * row[r] * across;
+    }
+    return sum;
 }
 
 } // namespace facesketch::dataset

@@ -14,6 +14,12 @@
 // `facesketch eval realism` (issue 16, docs/realism.md "Calibration"); the Farkas measures keep
 // the norms even where ICT differs (en-en, al-al: docs/realism.md).
 //
+// Shape fields (issue 16): 49 smooth radial fields (shapeField) with N(0, sd) coefficients, the
+// symmetric ones correlated along each row of the lattice (a shared factor per elevation, weight
+// 0.5), so faces vary along many more directions than the measures above, with neighbouring
+// regions moving together. Their SDs were set by `facesketch eval realism` against an ICT import
+// (docs/realism.md): the spectrum, not any ICT vertex.
+//
 // Randomness: the portable core/random.h generator (BoxMuller::RedrawZero), so identical seeds
 // give identical faces on every standard library.
 
@@ -92,7 +98,24 @@ struct FaceParams {
     double neckWidth = 110;
 
     std::vector<DetailBump> detail;
+
+    /// Coefficients (mm) of the generator's smooth shape fields (shapeField below), one per
+    /// field: radial offsets of regions of the face beyond what the anthropometric measures
+    /// above describe, so the population varies along many independent directions (issue 16).
+    std::vector<double> shapeModes;
 };
+
+/// The smooth shape fields of the generator: a 7 x 4 lattice of Gaussian bumps over the face
+/// chart (elevation 0.55 .. -0.95 rad in steps of 0.25, azimuth |theta| 0, 0.3, 0.6, 0.9 rad,
+/// width 0.2 rad), each bump mirrored to both sides: the first 28 fields are symmetric (left +
+/// right), the next 21 antisymmetric (left - right, the off-midline columns). Field k at
+/// (theta, phi) in radians (face_generator.h's chart); each bump peaks at 1 (-1 on the right
+/// side of an antisymmetric field).
+inline constexpr int kShapeFields = 49;
+double shapeField(int k, double theta, double phi);
+/// sum_k coefficients[k] * shapeField(k, theta, phi) over the first min(#coefficients, 49)
+/// fields, by separable factors (14 exponentials instead of 91): what the generator evaluates.
+double shapeFieldSum(const std::vector<double>& coefficients, double theta, double phi);
 
 /// The face of identity `index` in the population of `seed`: identity i's parameters depend
 /// only on (seed, i), so datasets of different sizes share their first faces.

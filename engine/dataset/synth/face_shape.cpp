@@ -147,6 +147,15 @@ double soft(const Frame& f, double theta0, double phi0, double X, double Y, int 
 
     for (const DetailBump& d : p.detail)
         r += d.height * std::exp(-(sq(theta0 - d.theta) + sq(phi0 - d.phi)) / sq(d.radius));
+    // Shape fields, calmed over the lips, the nose and the eyes: lip corners, vermilion
+    // borders, the nose tip and the eyeballs are placed by the parameters above, and a field's
+    // slope there would tip the lips' rows past their corners, move the most forward point off
+    // prn or shift the socket around its eyeball.
+    const double fields = shapeFieldSum(p.shapeModes, theta0, phi0);
+    const double lips = std::exp(-std::pow(X / (half + 6), 4) - std::pow(b / 12, 4));
+    const double nose = std::exp(-std::pow(X / 16, 4) - std::pow((Y - f.yPrn - 6) / 22, 4));
+    const double eyes = std::exp(-std::pow((ax - f.xEye) / 25, 4) - std::pow((Y - 1) / 19, 4));
+    r += fields * (1 - std::max({ lips, 0.85 * nose, eyes }));
     return r;
 }
 
