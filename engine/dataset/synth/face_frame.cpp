@@ -102,9 +102,9 @@ Frame makeFrame(const FaceParams& p)
     const std::vector<std::pair<double, double>> profile = {
         // The forehead knots were moved forward (by 16, 11 and 5 mm) towards the ICT-FaceKit
         // mean face (issue 16, docs/realism.md "Calibration").
-        { f.yN + 100, f.zf - 36 - 0.6 * slope },
-        { f.yN + 72, f.zf - 13 - 0.4 * slope },
-        { f.yN + 45, f.zf - 3 - 0.2 * slope },
+        { f.yN + 100, f.zf - 33 - 0.6 * slope },
+        { f.yN + 72, f.zf - 10 - 0.4 * slope },
+        { f.yN + 45, f.zf - 0.5 - 0.2 * slope },
         { f.yN + 22, f.zf - 0.5 + 0.3 * p.nasionDepth },
         { f.yN + 11, f.zf + p.nasionDepth },
         { f.yN, f.zf },

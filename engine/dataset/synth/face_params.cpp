@@ -126,6 +126,8 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
         p.shapeModes[static_cast<size_t>(k)]
             = k < 28 ? kSymmetricSd * (kRowWeight * rowFactor[k / 4] + std::sqrt(1 - sq(kRowWeight)) * z) : kAsymmetricSd * z;
     }
+    // Drawn last so the parameters above keep their draws from before it was added (issue 16).
+    p.paranasalHollow = n(4.5, 1.0); // ICT
     return p;
 }
 

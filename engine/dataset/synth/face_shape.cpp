@@ -67,6 +67,10 @@ double bone(const Frame& f, double theta, double phi, double X, double Y, const 
     if (ds < 1)
         r -= 8 * sq(1 - ds);
     r += p.cheekboneHeight * std::exp(-sq((ax - 0.36 * p.cheekboneWidth) / 16) - sq((Y + 20) / 14));
+    // Paranasal hollow: the maxilla beside the nose and under the orbit lies behind the
+    // envelope of the base surface (issue 16: its amplitude, place and size were set by the
+    // mean-face distance to the ICT-FaceKit mean face, docs/realism.md "Calibration").
+    r -= p.paranasalHollow * std::exp(-sq((ax - 25) / 14) - sq((Y + 12) / 21));
     r += p.chinHeight * std::exp(-sq(X / p.chinWidth) - sq((Y - f.yPg) / 12));
     // Mentolabial sulcus between the lower lip and the chin.
     r -= (1.5 + 0.3 * p.lowerLipFullness) * std::exp(-sq(X / 17) - sq((Y - lerp(f.ySto - p.lowerVermilion, f.yPg, 0.45)) / 5));
