@@ -44,8 +44,8 @@ PointHit hitWithin(const FpClusters& clusters, const std::vector<int>& allowed, 
 
 /// Step 6 for group g: its interior FPs picked again given the sketch-plane positions of its
 /// ends read so far (the conditional Gaussian of the joint cluster covariance).
-void followEnds(const FpClusters& clusters, const std::vector<PoseStrokePoints>& strokes,
-    const std::vector<std::vector<int>>& pointCluster, std::size_t g, double endpointBonus, std::vector<IdentifiedFp>& best)
+void followEnds(const FpClusters& clusters, const std::vector<PoseStrokePoints>& strokes, const std::vector<std::vector<int>>& pointCluster,
+    std::size_t g, double endpointBonus, std::vector<IdentifiedFp>& best)
 {
     std::vector<int> ends;
     for (int b : clusters.boundary[g])

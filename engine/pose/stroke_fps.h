@@ -138,9 +138,9 @@ struct IdentifiedFp {
     Eigen::Matrix<double, 2, 3> plane; ///< the sketch plane of its stroke
     int stroke = -1;                   ///< which stroke, and which of its points
     int point = -1;
-    double score = 0;    ///< log p(x | cluster) (+ log endpointWeight at an endpoint); after
-                         ///< step 6, log p(x | cluster, the group's ends)
-    bool nudged = false; ///< an endpoint mapped by moving it towards a boundary cluster
+    double score = 0;         ///< log p(x | cluster) (+ log endpointWeight at an endpoint); after
+                              ///< step 6, log p(x | cluster, the group's ends)
+    bool nudged = false;      ///< an endpoint mapped by moving it towards a boundary cluster
     bool conditioned = false; ///< picked in step 6, given its group's ends
 };
 

@@ -9,10 +9,11 @@
 // down +z, positive towards +x, the face's left) and elevation phi (positive up), and r is a
 // sum of smooth anatomical terms: a head/face base whose midline passes through the target
 // profile landmarks (glabella, nasion, subnasale, stomion, pogonion, gnathion), then nose
-// (dorsum, lobule, alae, nostril pits), brow ridges, orbital sockets, cheekbones, chin, the
-// soft tissue of lips, philtrum, cheeks and eyebrows, and the population's smooth shape fields
-// (face_params.h shapeField; calmed over lips and nose, whose parts the measures place). Because each ray meets the skin once the
-// skin cannot fold or cross itself, except where the topology is cut: two slits, one per eye
+// (dorsum, lobule, alae, nostril pits), brow ridges, orbital sockets, the paranasal hollow,
+// cheekbones, chin, the soft tissue of lips, philtrum, cheeks and eyebrows, and the
+// population's smooth shape fields (face_params.h shapeField; calmed over the lips, the nose
+// and the orbital sockets, whose parts the measures place). Because each ray meets the skin
+// once the skin cannot fold or cross itself, except where the topology is cut: two slits, one per eye
 // between en and ex and one for the mouth between the lip corners, whose upper and lower edges
 // are separate vertices pulled apart in (theta, phi) to open the eyes and part the lips.
 // Eyelids are kept a fixed gap above the eyeballs (ellipsoids behind each eye opening), so

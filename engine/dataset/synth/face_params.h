@@ -91,9 +91,9 @@ struct FaceParams {
     double cheekboneHeight = 4;  ///< radial prominence
     double cheekFullness = 2;
     double paranasalHollow = 4.5; ///< mm the cheek beside the nose and under the orbit lies back
-    double jawWidth = 102;     ///< go-go
-    double jawAngle = 0;       ///< squareness (-1..1 roughly)
-    double chinProjection = 0; ///< pg forward of the sn-vertical
+    double jawWidth = 102;        ///< go-go
+    double jawAngle = 0;          ///< squareness (-1..1 roughly)
+    double chinProjection = 0;    ///< pg forward of the sn-vertical
     double chinWidth = 14;
     double chinHeight = 0; ///< extra chin boss height (mm)
     double neckWidth = 110;
