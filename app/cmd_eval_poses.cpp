@@ -9,6 +9,7 @@
 #include "pose/pose_file.h"
 #include "pose/stroke_eval.h"
 
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -19,22 +20,30 @@ namespace {
 
 struct EvalPosesCommand {
     std::string model, dataset, json, minimal;
+    std::string identities = "test";
+    pose::PoseStrokeOptions strokes;
 };
 
 void runEvalPoses(const EvalPosesCommand& c)
 {
+    if (c.identities != "test" && c.identities != "contour")
+        fail("eval poses: --identities ", c.identities, ": expected test or contour");
+    if (!(c.strokes.reading.endpointWeight >= 1) || !std::isfinite(c.strokes.reading.endpointWeight))
+        fail("eval poses: --endpoint-weight ", c.strokes.reading.endpointWeight, " is not a finite value >= 1");
     const pose::PoseModel m = pose::loadPoseModel(c.model);
     const dataset::Dataset ds = dataset::openDataset(c.dataset);
     const std::vector<pose::MinimalPose> minimal = c.minimal.empty() ? pose::loadMinimalPoses() : pose::readMinimalPoses(c.minimal);
-    const pose::PoseSet test = pose::loadPoseSet(ds, { dataset::Role::Test });
+    // `contour` identities (which train-poses used only to choose the mixture) are where reading
+    // parameters are fitted; `test` identities are where they are reported.
+    const pose::PoseSet test = pose::loadPoseSet(ds, { c.identities == "contour" ? dataset::Role::Contour : dataset::Role::Test });
     evaluation::PoseEvaluation e = evaluation::evaluatePoses(m, test, minimal);
     // (c) from simulated pose strokes (front view, lip and brow contours): the whole chain a
     // user drives, strokes -> FPs (5.3) -> completion (5.4) -> mapping (5.4.1).
-    const pose::StrokePoseEvaluation strokes = pose::evaluateStrokePoses(m, test, ds.manifest.contours);
+    const pose::StrokePoseEvaluation strokes = pose::evaluateStrokePoses(m, test, ds.manifest.contours, {}, c.strokes);
     e.results.push_back(strokes.record);
     e.perPose.insert(e.perPose.end(), strokes.perPose.begin(), strokes.perPose.end());
 
-    std::cout << "# " << e.identities << " test identities of " << c.dataset << ", " << m.vertexCount
+    std::cout << "# " << e.identities << " " << c.identities << " identities of " << c.dataset << ", " << m.vertexCount
               << " vertices; mean per-vertex error\n";
     std::cout << "# strokes: " << strokes.strokes << " simulated, " << strokes.refused << " refused by the reader\n";
     std::cout << std::fixed << std::setprecision(3) << std::left << std::setw(12) << "task" << std::setw(13) << "method" << std::right
@@ -73,6 +82,11 @@ void addEvalPosesCommand(CLI::App& eval)
     cmd->add_option("dataset", c->dataset, "Posed dataset with `test` identities (same topology)")->required();
     cmd->add_option("--json", c->json, "Write the records to this JSON file");
     cmd->add_option("--minimal", c->minimal, "Minimal-pose table (default: the installed minimal-poses.json asset)");
+    cmd->add_option("--identities", c->identities, "Which identities are posed: test, or contour (to fit reading parameters on)")
+        ->capture_default_str();
+    cmd->add_option("--endpoint-weight", c->strokes.reading.endpointWeight,
+           "Pose strokes: how much a stroke's ends count towards its group and its FPs, >= 1 (pose/stroke_fps.h)")
+        ->capture_default_str();
     cmd->callback([c] { runEvalPoses(*c); });
 }
 

@@ -125,9 +125,17 @@ struct FpReadingOptions {
     /// (with the completion of posemodel 7fe5a1f; with today's mixtures and the completion's
     /// reading noise, PoseStrokeOptions::readingNoiseMm, jaw_open is 0.96 mm).
     double maxMahalanobis = 4.0;
-    double endpointWeight = 2.0; ///< >= 1: endpoints' vote and score (steps 3-5)
-    double nudgeMm = 6.0;        ///< how far a missing endpoint may move to a boundary cluster
-    bool followEnds = true;      ///< step 6 (false: the thesis' pick, step 5 alone)
+    /// >= 1: endpoints' vote and score (steps 3-5). A stroke's ends are where the user put the
+    /// feature's ends; at 2 an end more than about 1.2 SD from its cluster's mean lost to an
+    /// interior point nearer the mean, so a widened smile's corners were read inwards. Fitted
+    /// on the `contour` identities of the 40-identity posed sets (`eval poses --identities
+    /// contour --endpoint-weight W`, strokes ratio, synthetic high / low / ICT): 1: 0.456 /
+    /// 0.448 / 0.692, 2: 0.435 / 0.421 / 0.660, 4: 0.267 / 0.391 / 0.640, 8: 0.227 / 0.365 /
+    /// 0.609, 16: 0.227 / 0.359 / 0.608, 32: 0.227 / 0.359 / 0.656. 8 is the smallest value on
+    /// the plateau of all three (docs/posing.md).
+    double endpointWeight = 8.0;
+    double nudgeMm = 6.0;   ///< how far a missing endpoint may move to a boundary cluster
+    bool followEnds = true; ///< step 6 (false: the thesis' pick, step 5 alone)
 };
 
 /// An FP found in the strokes.

@@ -36,6 +36,15 @@ if(NOT task STREQUAL "mapping" OR NOT method STREQUAL "rbf")
   message(FATAL_ERROR "eval poses records: ${doc}")
 endif()
 
+# The fitting run: the 3 contour identities, with another endpoint weight; out-of-range values
+# and other identities are refused.
+run(eval poses ${WORK}/posed.poses ${WORK}/posed --identities contour --endpoint-weight 2)
+if(NOT out MATCHES "# 3 contour identities of" OR NOT out MATCHES "strokes +statistical +35 ")
+  message(FATAL_ERROR "eval poses --identities contour printed: ${out}")
+endif()
+expect_failure("endpoint-weight" eval poses ${WORK}/posed.poses ${WORK}/posed --endpoint-weight 0.5)
+expect_failure("identities" eval poses ${WORK}/posed.poses ${WORK}/posed --identities train)
+
 # Bad input: a dataset without poses, a face model given as a pose model; nothing written.
 run(synth -o ${WORK}/plain --identities 12 --seed 4)
 expect_failure("no identity with poses" train-poses ${WORK}/plain -o ${WORK}/plain.poses)

@@ -220,6 +220,7 @@ TEST_CASE("stroke fps: an endpoint outweighs a slightly likelier interior point 
         return 0.0;
     };
     FpReadingOptions weighted; // endpointWeight 2: log 2 = 0.69 beats the 0.18 density gap
+    weighted.endpointWeight = 2;
     REQUIRE(cornerAt(weighted) == -29);
     FpReadingOptions flat;
     flat.endpointWeight = 1;
@@ -250,8 +251,8 @@ TEST_CASE("stroke fps: a widened lip's mid-points follow its corners (step 6), w
     REQUIRE(clusters.jointCovariance.block<3, 3>(3 * c86, 3 * c86).isApprox(clusters.covariance[static_cast<std::size_t>(c86)]));
 
     // A mouth 3 mm wider at each corner than the rest face: as the training widens, 8.6 belongs
-    // at x = 13.5. (The ends are 3 mm from the corners' means, close enough for the endpoint
-    // bonus, log 2, to keep them at the ends: 3^2 / (2 x 10.25) = 0.44.)
+    // at x = 13.5. (The ends are 3 mm from the corners' means, close enough for even the
+    // thesis-like endpoint bonus, log 2, to keep them at the ends: 3^2 / (2 x 10.25) = 0.44.)
     const PoseStrokePoints stroke = line(-33, 33, 0, 1);
     auto at = [&](const FpReadingOptions& options, const std::string& name) {
         for (const auto& fp : identifyFps(clusters, { stroke }, options).fps)
