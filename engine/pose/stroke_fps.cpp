@@ -169,21 +169,9 @@ FpClusters fpClusters(const FeaturePoints& fps, const Eigen::MatrixXd& fpTrainin
         const Eigen::Vector3d base = neutral.row(v).transpose();
         if (!base.allFinite())
             fail("FP clusters: the face's vertex ", v, " (FP ", name, ") is not finite");
-        const Eigen::MatrixXd d = fpTraining.middleCols(3 * i, 3);
-        const Eigen::Vector3d mean = d.colwise().mean().transpose();
-        const Eigen::MatrixXd centred = d.rowwise() - mean.transpose();
-        Eigen::Matrix3d covariance = centred.transpose() * centred / static_cast<double>(d.rows());
-        covariance += options.minStdMm * options.minStdMm * Eigen::Matrix3d::Identity();
-        // A point that never moves in training and minStdMm 0 would leave a singular cluster.
-        const Eigen::LLT<Eigen::Matrix3d> llt(covariance);
-        if (llt.info() != Eigen::Success || covariance.determinant() <= 0)
-            fail("FP clusters: FP ", name, " never moves in training; use minStdMm > 0");
         clusters.fp.push_back(i);
         clusters.names.push_back(name);
-        clusters.mean.push_back(base + mean);
-        clusters.covariance.push_back(covariance);
-        clusters.precision.push_back(llt.solve(Eigen::Matrix3d::Identity()));
-        clusters.logNormaliser.push_back(-0.5 * std::log(std::pow(2 * std::numbers::pi, 3) * covariance.determinant()));
+        clusters.mean.push_back(base); // plus the mean displacement, below
         return static_cast<int>(clusters.names.size()) - 1;
     };
     for (const FpGroup& group : groups) {
@@ -195,13 +183,28 @@ FpClusters fpClusters(const FeaturePoints& fps, const Eigen::MatrixXd& fpTrainin
         clusters.groups.push_back(members);
         clusters.boundary.push_back(ends);
     }
+    // The clusters' displacements side by side: their joint covariance, whose diagonal blocks
+    // are each cluster's own.
     const Eigen::Index K = clusters.size();
     Eigen::MatrixXd d(fpTraining.rows(), 3 * K);
     for (Eigen::Index k = 0; k < K; ++k)
         d.middleCols(3 * k, 3) = fpTraining.middleCols(3 * clusters.fp[static_cast<std::size_t>(k)], 3);
-    const Eigen::MatrixXd centred = d.rowwise() - d.colwise().mean();
+    const Eigen::RowVectorXd meanDisplacement = d.colwise().mean();
+    const Eigen::MatrixXd centred = d.rowwise() - meanDisplacement;
     clusters.jointCovariance = centred.transpose() * centred / static_cast<double>(d.rows());
     clusters.jointCovariance.diagonal().array() += options.minStdMm * options.minStdMm;
+    for (Eigen::Index k = 0; k < K; ++k) {
+        const auto c = static_cast<std::size_t>(k);
+        clusters.mean[c] += meanDisplacement.segment<3>(3 * k).transpose();
+        const Eigen::Matrix3d covariance = clusters.jointCovariance.block<3, 3>(3 * k, 3 * k);
+        // A point that never moves in training and minStdMm 0 would leave a singular cluster.
+        const Eigen::LLT<Eigen::Matrix3d> llt(covariance);
+        if (llt.info() != Eigen::Success || covariance.determinant() <= 0)
+            fail("FP clusters: FP ", clusters.names[c], " never moves in training; use minStdMm > 0");
+        clusters.covariance.push_back(covariance);
+        clusters.precision.push_back(llt.solve(Eigen::Matrix3d::Identity()));
+        clusters.logNormaliser.push_back(-0.5 * std::log(std::pow(2 * std::numbers::pi, 3) * covariance.determinant()));
+    }
     return clusters;
 }
 

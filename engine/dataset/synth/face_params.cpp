@@ -132,15 +132,27 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
 }
 
 namespace {
+
 constexpr double kWidth = 0.2;
+
+/// Field k's place on the lattice (face_params.h): its row and column, and whether it is
+/// symmetric. Antisymmetric fields use the off-midline columns 1..3 of each row.
+struct FieldCell {
+    int row, col;
+    bool symmetric;
+};
+
+FieldCell fieldCell(int k)
+{
+    const bool symmetric = k < 28;
+    return { symmetric ? k / 4 : (k - 28) / 3, symmetric ? k % 4 : 1 + (k - 28) % 3, symmetric };
 }
+
+} // namespace
 
 double shapeField(int k, double theta, double phi)
 {
-    const bool symmetric = k < 28;
-    // Antisymmetric fields use the off-midline columns 1..3 of each row.
-    const int row = symmetric ? k / 4 : (k - 28) / 3;
-    const int col = symmetric ? k % 4 : 1 + (k - 28) % 3;
+    const auto [row, col, symmetric] = fieldCell(k);
     const double phiC = 0.55 - 0.25 * row, thetaC = 0.3 * col;
     const double dPhi = sq(phi - phiC);
     const double right = std::exp(-(sq(theta + thetaC) + dPhi) / sq(kWidth));
@@ -163,10 +175,7 @@ double shapeFieldSum(const std::vector<double>& coefficients, double theta, doub
     const size_t n = std::min(coefficients.size(), static_cast<size_t>(kShapeFields));
     double sum = 0;
     for (size_t k = 0; k < n; ++k) {
-        const int i = static_cast<int>(k);
-        const bool symmetric = i < 28;
-        const int r = symmetric ? i / 4 : (i - 28) / 3;
-        const int c = symmetric ? i % 4 : 1 + (i - 28) % 3;
+        const auto [r, c, symmetric] = fieldCell(static_cast<int>(k));
         const double across = c == 0 ? right[0] : symmetric ? left[c] + right[c] : left[c] - right[c];
         sum += coefficients[k] * row[r] * across;
     }
