@@ -410,30 +410,46 @@ TEST_CASE("tracking: with the robust passes points read onto the wrong vertices 
     const auto& t = test::trainedSynth();
     const auto lips = contourVertices("lip");
     REQUIRE(lips.size() >= 8);
-    // The lips where face 3 has them, but every fourth point read 8 mm off (wrong candidates).
-    const StrokeReading clean = reading(lips, 3, kFront);
-    StrokeReading wrongly = clean;
+    // The lips where a test face has them, but every fourth point read 8 mm off (wrong
+    // candidates). The claim is over all 10 test faces together. It was on face 3 alone, where
+    // the robust passes undid more than half the harm; over all 10 they undo 39% (0.37 of
+    // 0.95 mm), and with the generator's means fitted to ICT (not in main, docs/realism.md) the
+    // wrong points do face 3 only 0.01 mm of harm: one face is no premise.
     std::vector<bool> wrong(lips.size(), false);
-    for (size_t i = 0; i < lips.size(); i += 4) {
+    for (size_t i = 0; i < lips.size(); i += 4)
         wrong[i] = true;
-        wrongly.observations[i].position += Eigen::Vector3d(0, 8, 0);
-    }
-    // The mean error of the lip vertices read rightly.
-    auto errorOfOthers = [&](const StrokeReading& r, int passes) {
-        TrackingOptions o;
-        o.robustPasses = passes;
-        TrackingModel tracking(t.model, o);
-        tracking.apply(r);
-        double sum = 0;
+    // The mean error of the lip vertices read rightly, summed over the faces.
+    double base = 0, plain = 0, robust = 0;
+    for (int face = 0; face < static_cast<int>(t.testSkin.rows()); ++face) {
+        const StrokeReading clean = reading(lips, face, kFront);
+        StrokeReading wrongly = clean;
         for (size_t i = 0; i < lips.size(); ++i)
-            if (!wrong[i])
-                sum += (tracking.face().segment<3>(3 * lips[i]) - t.testSkin.row(3).segment<3>(3 * lips[i]).transpose()).norm();
-        return sum / static_cast<double>(std::count(wrong.begin(), wrong.end(), false));
-    };
-    const double base = errorOfOthers(clean, 0), plain = errorOfOthers(wrongly, 0), robust = errorOfOthers(wrongly, 2);
-    INFO("lip error: " << base << " mm read rightly; with the wrong points " << plain << " mm, " << robust << " mm with the robust passes");
-    REQUIRE(plain > base + 0.1);                 // the wrong points do harm ...
-    CHECK(robust - base < 0.5 * (plain - base)); // ... of which the robust passes undo more than half
+            if (wrong[i])
+                wrongly.observations[i].position += Eigen::Vector3d(0, 8, 0);
+        auto errorOfOthers = [&](const StrokeReading& r, int passes) {
+            TrackingOptions o;
+            o.robustPasses = passes;
+            TrackingModel tracking(t.model, o);
+            tracking.apply(r);
+            double sum = 0;
+            for (size_t i = 0; i < lips.size(); ++i)
+                if (!wrong[i])
+                    sum += (tracking.face().segment<3>(3 * lips[i]) - t.testSkin.row(face).segment<3>(3 * lips[i]).transpose()).norm();
+            return sum / static_cast<double>(std::count(wrong.begin(), wrong.end(), false));
+        };
+        base += errorOfOthers(clean, 0);
+        plain += errorOfOthers(wrongly, 0);
+        robust += errorOfOthers(wrongly, 2);
+    }
+    const double faces = static_cast<double>(t.testSkin.rows());
+    base /= faces;
+    plain /= faces;
+    robust /= faces;
+    INFO("lip error over " << faces << " faces: " << base << " mm read rightly; with the wrong points " << plain << " mm, " << robust
+                           << " mm with the robust passes");
+    REQUIRE(faces >= 5);
+    REQUIRE(plain > base + 0.1);                       // the wrong points do harm ...
+    CHECK(robust - base < 2.0 / 3.0 * (plain - base)); // ... of which the robust passes undo more than a third
     TrackingOptions bad;
     bad.robustK = 0;
     REQUIRE_THROWS_WITH(TrackingModel(t.model, bad), Catch::Contains("robustK"));
