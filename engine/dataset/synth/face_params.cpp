@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 namespace facesketch::dataset {
 
@@ -39,6 +40,19 @@ double normDraw(const Norm& n, bool female, double g, double z)
     return mean + sd * (rho * g + std::sqrt(1 - rho * rho) * z);
 }
 
+// Means (mm) of the 28 symmetric shape fields, row by row from the forehead down, columns 0-3
+// from the midline out (shapeField): the smooth part of the ICT-FaceKit mean face the
+// parameters cannot reach, fitted with the parameter means (sampleFaceParams, "ICT").
+constexpr double kFieldMeans[28] = {
+    0.5, 0.4, -1.5, -0.3,  // forehead
+    2.5, 1.1, 0.9, -0.6,   // brows
+    4.8, -4.0, -1.7, -2.0, // eyes
+    3.5, 1.0, -1.0, 0.1,   // nose, upper cheeks
+    6.8, -1.6, 1.0, 0.1,   // mouth, lower cheeks
+    2.4, -3.5, 3.8, 0.2,   // chin, jaw
+    -5.3, 0.0, 0.5, 0.1,   // under the chin
+};
+
 } // namespace
 
 FaceParams sampleFaceParams(std::uint64_t seed, int index)
@@ -65,43 +79,47 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
 
     auto n = [&](double mean, double sd) { return mean + sd * rng.normal(); };
     // Means marked "ICT" were moved towards the ICT-FaceKit mean face (issue 16; docs/realism.md,
-    // "Calibration"): each was set by the mean-face distance of `facesketch eval realism` against
-    // an ICT import, guided by the signed map of tools/realism-landmarks.py --map.
+    // "Calibration"). First by hand, by the mean-face distance of `facesketch eval realism`
+    // against an ICT import and the signed map of tools/realism-landmarks.py --map; then (3
+    // December) together with kFieldMeans (above) by a regularised Gauss-Newton fit of all these
+    // means to that distance (docs/realism.md, "The means fitted"), each move penalised by its
+    // size in SDs so none goes far from the population it describes. The Farkas draws above are
+    // anthropometric norms and were left alone.
     p.tipProtrusion = n(22.5 - 1.5 * s, 1.8); // ICT: 20.5 before
     p.tipRise = n(4.5 - 1.5 * aging, 1.2);
-    p.dorsumHump = n(0.6 - 0.5 * s, 0.9);
-    p.bridgeWidth = n(6.5 - 0.5 * s, 0.6);
-    p.tipWidth = n(5.8 - 0.6 * s, 0.7); // ICT: 8.8 before
-    p.alaSize = n(6.0 - 0.5 * s, 0.5);  // ICT: 7.0 before
+    p.dorsumHump = n(0.9 - 0.5 * s, 0.9);  // ICT: 0.6 before
+    p.bridgeWidth = n(7.0 - 0.5 * s, 0.6); // ICT: 6.5 before
+    p.tipWidth = n(6.3 - 0.6 * s, 0.7);    // ICT: 8.8, then 5.8 before
+    p.alaSize = n(5.7 - 0.5 * s, 0.5);     // ICT: 7.0, then 6.0 before
     p.nostrilSize = n(3.6 - 0.3 * s, 0.4);
-    p.nasionDepth = n(3.0 - 0.5 * s, 1.2);
+    p.nasionDepth = n(1.0 - 0.5 * s, 1.2); // ICT: 3.0 before
 
-    p.upperVermilion = n(8.7 - 0.4 * s - 1.5 * aging, 1.2);
-    p.lowerVermilion = n(10.0 - 0.5 * s - 1.5 * aging, 1.3);
-    p.upperLipFullness = n(5.6 - 1.5 * aging, 0.8);
-    p.lowerLipFullness = n(6.2 - 1.5 * aging, 0.9);
-    p.lipProtrusion = n(2.0, 1.2);
+    p.upperVermilion = n(10.4 - 0.4 * s - 1.5 * aging, 1.2); // ICT: 8.7 before
+    p.lowerVermilion = n(10.1 - 0.5 * s - 1.5 * aging, 1.3); // ICT: 10.0 before
+    p.upperLipFullness = n(6.6 - 1.5 * aging, 0.8);          // ICT: 5.6 before
+    p.lowerLipFullness = n(5.8 - 1.5 * aging, 0.9);          // ICT: 6.2 before
+    p.lipProtrusion = n(0.8, 1.2);                           // ICT: 2.0 before
     p.cupidBow = n(1.0, 0.3);
     p.philtrumDepth = n(0.9, 0.25);
     p.cornerHeight = n(0.0 - 1.0 * aging, 0.8);
 
-    p.fissureHeight = n(10.8 - 1.2 * aging, 0.8);
-    p.canthalTilt = n(2.0 + 0.5 * s, 1.0);
-    p.eyeSet = n(6.5, 1.2);
-    p.browRidge = n(4.0 - 2.0 * s, 0.9);
-    p.browHeight = n(25.0 + 2.0 * s, 2.0); // ICT: 17.0 before
+    p.fissureHeight = n(11.2 - 1.2 * aging, 0.8); // ICT: 10.8 before
+    p.canthalTilt = n(3.4 + 0.5 * s, 1.0);        // ICT: 2.0 before
+    p.eyeSet = n(3.5, 1.2);                       // ICT: 6.5 before
+    p.browRidge = n(3.4 - 2.0 * s, 0.9);          // ICT: 4.0 before
+    p.browHeight = n(29.0 + 2.0 * s, 2.0);        // ICT: 17.0, then 25.0 before
 
-    p.faceDepth = n(88.0 - 3.0 * s, 3.0) + 1.5 * g;
-    p.foreheadSlope = n(8.0 - 4.0 * s, 4.0);
-    p.headBreadth = n(154.0 - 7.0 * s, 5.0) + 2.0 * g;
-    p.cheekboneWidth = n(139.1 - 8.2 * s, 5.3) + 2.0 * g;
-    p.cheekboneHeight = n(0.5, 1.0); // ICT: 3.5 before
+    p.faceDepth = n(86.5 - 3.0 * s, 3.0) + 1.5 * g;       // ICT: 88.0 before
+    p.foreheadSlope = n(10.0 - 4.0 * s, 4.0);             // ICT: 8.0 before
+    p.headBreadth = n(153.6 - 7.0 * s, 5.0) + 2.0 * g;    // ICT: 154.0 before
+    p.cheekboneWidth = n(139.2 - 8.2 * s, 5.3) + 2.0 * g; // ICT: 139.1 before
+    p.cheekboneHeight = n(0.3, 1.0);                      // ICT: 3.5, then 0.5 before
     p.cheekFullness = n(2.5 - 1.5 * aging + 0.5 * s, 1.0);
-    p.jawWidth = n(104.0 - 7.4 * s, 5.5) + 2.0 * g;
-    p.jawAngle = n(0.3 - 0.5 * s, 0.4);
-    p.chinProjection = n(-2.0 - 1.0 * s, 3.0);
-    p.chinWidth = n(15.0 - 1.5 * s, 1.8);
-    p.chinHeight = n(2.5 - 0.8 * s, 0.8);
+    p.jawWidth = n(106.4 - 7.4 * s, 5.5) + 2.0 * g; // ICT: 104.0 before
+    p.jawAngle = n(0.1 - 0.5 * s, 0.4);             // ICT: 0.3 before
+    p.chinProjection = n(0.4 - 1.0 * s, 3.0);       // ICT: -2.0 before
+    p.chinWidth = n(14.8 - 1.5 * s, 1.8);           // ICT: 15.0 before
+    p.chinHeight = n(3.1 - 0.8 * s, 0.8);           // ICT: 2.5 before
     p.neckWidth = n(115.0 - 15.0 * s, 6.0);
 
     // Fine detail: a few low bumps spread over the face, so no two faces are smooth copies.
@@ -115,7 +133,8 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
     }
 
     // Shape fields: symmetric ones share a factor per lattice row; antisymmetric ones are
-    // independent and smaller (faces are nearly symmetric).
+    // independent and smaller (faces are nearly symmetric). The symmetric ones have non-zero
+    // means (kFieldMeans, fitted with the means above); the antisymmetric ones' stay 0.
     double rowFactor[7];
     for (double& u : rowFactor)
         u = rng.normal();
@@ -123,11 +142,12 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
     p.shapeModes.resize(kShapeFields);
     for (int k = 0; k < kShapeFields; ++k) {
         const double z = rng.normal();
-        p.shapeModes[static_cast<size_t>(k)]
-            = k < 28 ? kSymmetricSd * (kRowWeight * rowFactor[k / 4] + std::sqrt(1 - sq(kRowWeight)) * z) : kAsymmetricSd * z;
+        p.shapeModes[static_cast<size_t>(k)] = k < 28
+            ? shapeFieldMeans()[static_cast<size_t>(k)] + kSymmetricSd * (kRowWeight * rowFactor[k / 4] + std::sqrt(1 - sq(kRowWeight)) * z)
+            : kAsymmetricSd * z;
     }
     // Drawn last so the parameters above keep their draws from before it was added (issue 16).
-    p.paranasalHollow = n(4.5, 1.0); // ICT
+    p.paranasalHollow = n(5.5, 1.0); // ICT: 4.5 before
     return p;
 }
 
@@ -160,6 +180,16 @@ double shapeField(int k, double theta, double phi)
         return right;
     const double left = std::exp(-(sq(theta - thetaC) + dPhi) / sq(kWidth));
     return symmetric ? left + right : left - right;
+}
+
+const std::vector<double>& shapeFieldMeans()
+{
+    static const std::vector<double> means = [] {
+        std::vector<double> m(kShapeFields, 0.0);
+        std::copy(std::begin(kFieldMeans), std::end(kFieldMeans), m.begin());
+        return m;
+    }();
+    return means;
 }
 
 double shapeFieldSum(const std::vector<double>& coefficients, double theta, double phi)

@@ -9,16 +9,17 @@
 // standard normal, so each measure keeps the norm's mean and SD while sizes correlate.
 // Age (uniform 20..65 years) thins the lips, lengthens and drops the nose and narrows the
 // eye opening; sex shifts means and brow, jaw and chin prominence.
-// The means of parameters that no Farkas norm fixes (brow height, cheekbone prominence, nose
-// lobule, alae and tip) were moved towards the ICT-FaceKit mean face by
-// `facesketch eval realism` (issue 16, docs/realism.md "Calibration"); the Farkas measures keep
-// the norms even where ICT differs (en-en, al-al: docs/realism.md).
+// The means of parameters that no Farkas norm fixes (nose, lips, eyes, brows, face depth,
+// cheeks, jaw and chin) were moved towards the ICT-FaceKit mean face by the mean-face distance
+// of `facesketch eval realism` (issue 16, docs/realism.md "Calibration" and "The means
+// fitted"); the Farkas measures keep the norms even where ICT differs (en-en, al-al).
 //
-// Shape fields (issue 16): 49 smooth radial fields (shapeField) with N(0, sd) coefficients, the
+// Shape fields (issue 16): 49 smooth radial fields (shapeField) with normal coefficients, the
 // symmetric ones correlated along each row of the lattice (a shared factor per elevation, weight
 // 0.5), so faces vary along many more directions than the measures above, with neighbouring
-// regions moving together. Their SDs were set by `facesketch eval realism` against an ICT import
-// (docs/realism.md): the spectrum, not any ICT vertex.
+// regions moving together. Their SDs were set by the spectrum of `facesketch eval realism`
+// against an ICT import, and the symmetric ones' means (28 numbers) by its mean-face distance,
+// with the parameter means: statistics of the ICT set, not any ICT vertex.
 //
 // Randomness: the portable core/random.h generator (BoxMuller::RedrawZero), so identical seeds
 // give identical faces on every standard library.
@@ -117,6 +118,10 @@ double shapeField(int k, double theta, double phi);
 /// sum_k coefficients[k] * shapeField(k, theta, phi) over the first min(#coefficients, 49)
 /// fields, by separable factors (14 exponentials instead of 91): what the generator evaluates.
 double shapeFieldSum(const std::vector<double>& coefficients, double theta, double phi);
+/// The population means of the 49 fields' coefficients (mm): non-zero for the 28 symmetric
+/// ones (fitted to the ICT-FaceKit mean face with the parameter means, issue 16), 0 for the
+/// antisymmetric ones. sampleFaceParams draws each face's coefficients around them.
+const std::vector<double>& shapeFieldMeans();
 
 /// The face of identity `index` in the population of `seed`: identity i's parameters depend
 /// only on (seed, i), so datasets of different sizes share their first faces.

@@ -21,6 +21,7 @@ using namespace detail;
 namespace {
 
 constexpr double kSide = 100.0 * M_PI / 180.0; // the grid reaches 10 degrees behind the ears
+constexpr double kSupratip = 1.0;              // mm, the supratip break's depth (bone(): nose)
 
 // Radial height of nose, brows, sockets, cheekbones and chin: the parts that do not slide.
 double bone(const Frame& f, double theta, double phi, double X, double Y, const FaceActions& act)
@@ -41,6 +42,13 @@ double bone(const Frame& f, double theta, double phi, double X, double Y, const 
         } else {
             const double t = (phi - f.phiPrn) / (f.phiN - f.phiPrn);
             height = f.noseTip * sq(1 - t) * (1 + 2 * t) + p.dorsumHump * sq(std::sin(M_PI * t)) * smoothstep(0, 0.3, t);
+            // Supratip break: the dorsum dips just above the lobule, as on real noses, so the
+            // tip is a dome with prn at its front. Without it the profile is flat to first order
+            // at prn (the cubic's slope is 0 there), and a small slope from the shape fields
+            // moved the most forward vertex 4 mm up the dorsum, 0.007 mm further forward (issue
+            // 16, docs/realism.md). It costs 0.01 mm of the mean-face distance to ICT.
+            const double s = t * (f.yN - f.yPrn);
+            height -= kSupratip * (1 - std::exp(-sq(s / 4))) * std::exp(-sq((s - 12) / 9));
             halfWidth = lerp(p.tipWidth, p.bridgeWidth, smoothstep(0, 0.55, t)) + 2.5 * smoothstep(0.6, 1, t);
         }
         const double x = ax / (halfWidth * 1.6);
@@ -155,11 +163,15 @@ double soft(const Frame& f, double theta0, double phi0, double X, double Y, int 
     // borders, the nose tip and the eyeballs are placed by the parameters above, and a field's
     // slope there would tip the lips' rows past their corners, move the most forward point off
     // prn or shift the socket around its eyeball.
+    // The population's mean fields (shapeFieldMeans) are calmed over all of the nose, whose
+    // own parameters set its mean shape: 15% of a mean field's slope there tilts the flat
+    // lobule so its most forward point leaves prn. A face's own variation keeps 15%.
     const double fields = shapeFieldSum(p.shapeModes, theta0, phi0);
+    const double meanFields = shapeFieldSum(shapeFieldMeans(), theta0, phi0);
     const double lips = std::exp(-std::pow(X / (half + 6), 4) - std::pow(b / 12, 4));
     const double nose = std::exp(-std::pow(X / 16, 4) - std::pow((Y - f.yPrn - 6) / 22, 4));
     const double eyes = std::exp(-std::pow((ax - f.xEye) / 25, 4) - std::pow((Y - 1) / 19, 4));
-    r += fields * (1 - std::max({ lips, 0.85 * nose, eyes }));
+    r += (fields - meanFields) * (1 - std::max({ lips, 0.85 * nose, eyes })) + meanFields * (1 - std::max({ lips, nose, eyes }));
     return r;
 }
 
@@ -314,8 +326,12 @@ Vertices synthesizeFace(const FaceTopology& t, const FaceParams& params, const F
             theta = te;
         else if (row <= K[4])
             theta = lerp(te, tn, double(row - K[3]) / (K[4] - K[3]));
-        else if (row <= K[7])
-            theta = lerp(tn, tm, double(row - K[4]) / (K[7] - K[4]));
+        // The upper lip, from the ls row down to the slit, keeps the mouth's columns; the blend
+        // to the nose's columns happens above it. Blended down to the slit, the columns fanned
+        // outwards up the lip, and the outer lip line's vertex one column in from a corner
+        // could reach past ch (by up to 0.08 mm, seed 7; docs/realism.md).
+        else if (row <= K[6])
+            theta = lerp(tn, tm, double(row - K[4]) / (K[6] - K[4]));
         else
             theta = tm;
         const double side = smoothstep(0.5, 1.6, std::abs(theta));
