@@ -3,6 +3,7 @@
 #include "core/random.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iterator>
 
@@ -192,9 +193,12 @@ const std::vector<double>& shapeFieldMeans()
     return means;
 }
 
-double shapeFieldSum(const std::vector<double>& coefficients, double theta, double phi)
+namespace {
+
+// The 49 fields at (theta, phi): each bump is exp(-dtheta^2 / w^2) exp(-dphi^2 / w^2), so row and
+// column factors (14 distinct exponentials) give all of them.
+std::array<double, kShapeFields> shapeFieldValues(double theta, double phi)
 {
-    // Each bump is exp(-dtheta^2 / w^2) exp(-dphi^2 / w^2): 7 row and 7 column factors.
     double row[7], right[4], left[4];
     for (int j = 0; j < 7; ++j)
         row[j] = std::exp(-sq(phi - (0.55 - 0.25 * j)) / sq(kWidth));
@@ -202,14 +206,34 @@ double shapeFieldSum(const std::vector<double>& coefficients, double theta, doub
         right[c] = std::exp(-sq(theta + 0.3 * c) / sq(kWidth));
         left[c] = std::exp(-sq(theta - 0.3 * c) / sq(kWidth));
     }
-    const size_t n = std::min(coefficients.size(), static_cast<size_t>(kShapeFields));
-    double sum = 0;
-    for (size_t k = 0; k < n; ++k) {
-        const auto [r, c, symmetric] = fieldCell(static_cast<int>(k));
-        const double across = c == 0 ? right[0] : symmetric ? left[c] + right[c] : left[c] - right[c];
-        sum += coefficients[k] * row[r] * across;
+    std::array<double, kShapeFields> values;
+    for (int k = 0; k < kShapeFields; ++k) {
+        const auto [r, c, symmetric] = fieldCell(k);
+        values[static_cast<size_t>(k)] = row[r] * (c == 0 ? right[0] : symmetric ? left[c] + right[c] : left[c] - right[c]);
     }
+    return values;
+}
+
+double dot(const std::vector<double>& coefficients, const std::array<double, kShapeFields>& values)
+{
+    const size_t n = std::min(coefficients.size(), values.size());
+    double sum = 0;
+    for (size_t k = 0; k < n; ++k)
+        sum += coefficients[k] * values[k];
     return sum;
+}
+
+} // namespace
+
+double shapeFieldSum(const std::vector<double>& coefficients, double theta, double phi)
+{
+    return dot(coefficients, shapeFieldValues(theta, phi));
+}
+
+std::array<double, 2> shapeFieldSums(const std::vector<double>& a, const std::vector<double>& b, double theta, double phi)
+{
+    const std::array<double, kShapeFields> values = shapeFieldValues(theta, phi);
+    return { dot(a, values), dot(b, values) };
 }
 
 } // namespace facesketch::dataset

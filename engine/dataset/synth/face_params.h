@@ -24,6 +24,7 @@
 // Randomness: the portable core/random.h generator (BoxMuller::RedrawZero), so identical seeds
 // give identical faces on every standard library.
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -118,6 +119,9 @@ double shapeField(int k, double theta, double phi);
 /// sum_k coefficients[k] * shapeField(k, theta, phi) over the first min(#coefficients, 49)
 /// fields, by separable factors (14 exponentials instead of 91): what the generator evaluates.
 double shapeFieldSum(const std::vector<double>& coefficients, double theta, double phi);
+/// shapeFieldSum of two coefficient vectors at one point, sharing the exponentials:
+/// { sum of a's, sum of b's }.
+std::array<double, 2> shapeFieldSums(const std::vector<double>& a, const std::vector<double>& b, double theta, double phi);
 /// The population means of the 49 fields' coefficients (mm): non-zero for the 28 symmetric
 /// ones (fitted to the ICT-FaceKit mean face with the parameter means, issue 16), 0 for the
 /// antisymmetric ones. sampleFaceParams draws each face's coefficients around them.

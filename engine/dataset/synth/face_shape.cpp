@@ -166,8 +166,7 @@ double soft(const Frame& f, double theta0, double phi0, double X, double Y, int 
     // The population's mean fields (shapeFieldMeans) are calmed over all of the nose, whose
     // own parameters set its mean shape: 15% of a mean field's slope there tilts the flat
     // lobule so its most forward point leaves prn. A face's own variation keeps 15%.
-    const double fields = shapeFieldSum(p.shapeModes, theta0, phi0);
-    const double meanFields = shapeFieldSum(shapeFieldMeans(), theta0, phi0);
+    const auto [fields, meanFields] = shapeFieldSums(p.shapeModes, shapeFieldMeans(), theta0, phi0);
     const double lips = std::exp(-std::pow(X / (half + 6), 4) - std::pow(b / 12, 4));
     const double nose = std::exp(-std::pow(X / 16, 4) - std::pow((Y - f.yPrn - 6) / 22, 4));
     const double eyes = std::exp(-std::pow((ax - f.xEye) / 25, 4) - std::pow((Y - 1) / 19, 4));

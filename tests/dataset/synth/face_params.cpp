@@ -3,6 +3,7 @@
 #include "dataset/synth/face_params.h"
 #include "test_common.h"
 
+#include <algorithm>
 #include <cmath>
 
 using namespace facesketch;
@@ -74,7 +75,18 @@ TEST_CASE("face_params: shape fields are mirror-symmetric or antisymmetric and t
             for (int k = 0; k < kShapeFields; ++k)
                 sum += p.shapeModes[static_cast<size_t>(k)] * shapeField(k, theta, phi);
             REQUIRE(shapeFieldSum(p.shapeModes, theta, phi) == Approx(sum).margin(1e-12));
+            double meanSum = 0;
+            for (int k = 0; k < kShapeFields; ++k)
+                meanSum += shapeFieldMeans()[static_cast<size_t>(k)] * shapeField(k, theta, phi);
+            const auto [both, means] = shapeFieldSums(p.shapeModes, shapeFieldMeans(), theta, phi);
+            REQUIRE(both == Approx(sum).margin(1e-12));
+            REQUIRE(means == Approx(meanSum).margin(1e-12));
         }
+    // The population means: the 28 symmetric fields' are fitted (some non-zero), the 21
+    // antisymmetric ones' are 0, so the mean face stays symmetric.
+    REQUIRE(shapeFieldMeans().size() == static_cast<size_t>(kShapeFields));
+    REQUIRE(std::count(shapeFieldMeans().begin(), shapeFieldMeans().begin() + 28, 0.0) < 28);
+    REQUIRE(std::count(shapeFieldMeans().begin() + 28, shapeFieldMeans().end(), 0.0) == 21);
 }
 
 TEST_CASE("face_params: symmetric shape field coefficients are correlated along a lattice row, not across rows")
