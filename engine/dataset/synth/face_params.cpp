@@ -121,7 +121,7 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
     p.chinProjection = n(0.2 - 1.0 * s, 3.0);       // ICT: -2.0 before
     p.chinWidth = n(14.7 - 1.5 * s, 1.8);           // ICT: 15.0 before
     p.chinHeight = n(3.3 - 0.8 * s, 0.8);           // ICT: 2.5 before
-    p.neckWidth = n(115.0 - 15.0 * s, 6.0);
+    p.neckWidth = n(114.8 - 15.0 * s, 6.0);         // ICT: 115.0 before
 
     // Fine detail: a few low bumps spread over the face, so no two faces are smooth copies.
     for (int i = 0; i < 14; ++i) {
