@@ -416,8 +416,8 @@ TEST_CASE("tracking: with the robust passes points read onto the wrong vertices 
     // The lips where a test face has them, but every fourth point read 8 mm off (wrong
     // candidates). The claim is over all 10 test faces together. It was on face 3 alone, where
     // the robust passes undid more than half the harm; over all 10 they undo 39% (0.37 of
-    // 0.95 mm, the generator before its means were fitted to ICT) and 38% with them (0.36 of
-    // 0.96 mm), where the wrong points do face 3 alone only 0.01 mm of harm: one face is no
+    // 0.95 mm, the generator before its means were fitted to ICT) and 36% with them (0.35 of
+    // 0.97 mm), where the wrong points do face 3 alone only 0.01 mm of harm: one face is no
     // premise.
     std::vector<bool> wrong(lips.size(), false);
     for (size_t i = 0; i < lips.size(); i += 4)

@@ -83,7 +83,7 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
     // "Calibration"). First by hand, by the mean-face distance of `facesketch eval realism`
     // against an ICT import and the signed map of tools/realism-landmarks.py --map; then (3
     // December) together with kFieldMeans (above) by a regularised Gauss-Newton fit of all these
-    // means to that distance (docs/realism.md, "The means fitted"), each move penalised by its
+    // means to that distance (docs/realism.md, "Now (3 December, later)"), each move penalised by its
     // size in SDs so none goes far from the population it describes. The Farkas draws above are
     // anthropometric norms and were left alone.
     p.tipProtrusion = n(22.5 - 1.5 * s, 1.8); // ICT: 20.5 before

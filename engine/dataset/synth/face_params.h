@@ -11,8 +11,8 @@
 // eye opening; sex shifts means and brow, jaw and chin prominence.
 // The means of parameters that no Farkas norm fixes (nose, lips, eyes, brows, face depth,
 // cheeks, jaw and chin) were moved towards the ICT-FaceKit mean face by the mean-face distance
-// of `facesketch eval realism` (issue 16, docs/realism.md "Calibration" and "The means
-// fitted"); the Farkas measures keep the norms even where ICT differs (en-en, al-al).
+// of `facesketch eval realism` (issue 16, docs/realism.md "Calibration" and "Now (3
+// December, later)"); the Farkas measures keep the norms even where ICT differs (en-en, al-al).
 //
 // Shape fields (issue 16): 49 smooth radial fields (shapeField) with normal coefficients, the
 // symmetric ones correlated along each row of the lattice (a shared factor per elevation, weight
