@@ -225,11 +225,6 @@ double dot(const std::vector<double>& coefficients, const std::array<double, kSh
 
 } // namespace
 
-double shapeFieldSum(const std::vector<double>& coefficients, double theta, double phi)
-{
-    return dot(coefficients, shapeFieldValues(theta, phi));
-}
-
 std::array<double, 2> shapeFieldSums(const std::vector<double>& a, const std::vector<double>& b, double theta, double phi)
 {
     const std::array<double, kShapeFields> values = shapeFieldValues(theta, phi);

@@ -116,11 +116,9 @@ struct FaceParams {
 /// side of an antisymmetric field).
 inline constexpr int kShapeFields = 49;
 double shapeField(int k, double theta, double phi);
-/// sum_k coefficients[k] * shapeField(k, theta, phi) over the first min(#coefficients, 49)
-/// fields, by separable factors (14 exponentials instead of 91): what the generator evaluates.
-double shapeFieldSum(const std::vector<double>& coefficients, double theta, double phi);
-/// shapeFieldSum of two coefficient vectors at one point, sharing the exponentials:
-/// { sum of a's, sum of b's }.
+/// { sum_k a[k] * shapeField(k, theta, phi), the same for b }, each over its first
+/// min(#coefficients, 49) fields, by separable factors (14 exponentials instead of 91, shared by
+/// both sums): what the generator evaluates, a face's coefficients and the population means.
 std::array<double, 2> shapeFieldSums(const std::vector<double>& a, const std::vector<double>& b, double theta, double phi);
 /// The population means of the 49 fields' coefficients (mm): non-zero for the 28 symmetric
 /// ones (fitted to the ICT-FaceKit mean face with the parameter means, issue 16), 0 for the
