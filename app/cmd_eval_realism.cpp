@@ -51,9 +51,16 @@ void runEvalRealism(const EvalRealismCommand& c)
     std::cout << std::left << std::setw(10) << "region" << std::right << std::setw(12) << "area mm^2" << std::setw(10) << "RMS mm"
               << std::setw(10) << "p95 mm" << std::setw(10) << "max mm"
               << "\n";
-    for (const evaluation::SurfaceDistance& d : r.distances)
+    auto row = [](const evaluation::SurfaceDistance& d) {
         std::cout << std::left << std::setw(10) << d.region << std::right << std::setw(12) << d.area << std::setw(10) << d.rms
                   << std::setw(10) << d.p95 << std::setw(10) << d.max << "\n";
+    };
+    for (const evaluation::SurfaceDistance& d : r.distances)
+        row(d);
+    std::cout << "# enclosed (the normal meets the same skin within " << o.enclosedReach
+              << " mm: nostrils' insides, inner lips): " << r.dataEnclosed << " mm^2 of the data, " << r.referenceEnclosed
+              << " mm^2 of the reference; `open` leaves them out\n";
+    row(r.open);
     std::cout << "PCA modes for 90 / 95 / 99% of the variance\n";
     std::cout << std::left << std::setw(20) << "set" << std::right << std::setw(8) << "90%" << std::setw(8) << "95%" << std::setw(8)
               << "99%" << std::setw(10) << "samples" << std::setw(12) << "dimensions"
@@ -72,6 +79,10 @@ void runEvalRealism(const EvalRealismCommand& c)
             { "landmarks", r.landmarks }, { "alignment_scale", r.alignmentScale }, { "landmark_rms_mm", r.landmarkRms },
             { "data_area_mm2", r.dataArea }, { "data_uncovered_mm2", r.dataUncovered }, { "reference_area_mm2", r.referenceArea },
             { "reference_uncovered_mm2", r.referenceUncovered }, { "distances", distances },
+            { "enclosed",
+                { { "reach_mm", o.enclosedReach }, { "data_mm2", r.dataEnclosed }, { "reference_mm2", r.referenceEnclosed },
+                    { "open",
+                        { { "area_mm2", r.open.area }, { "rms_mm", r.open.rms }, { "p95_mm", r.open.p95 }, { "max_mm", r.open.max } } } } },
             { "spectrum",
                 { { "data_central", spectrumJson(r.dataCentral) }, { "reference_central", spectrumJson(r.referenceCentral) },
                     { "data_skin", spectrumJson(r.dataSkin) }, { "reference_skin", spectrumJson(r.referenceSkin) } } } };

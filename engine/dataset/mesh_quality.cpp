@@ -24,7 +24,8 @@ Eigen::Vector3d normal(const Vertices& V, const Triangles& F, Eigen::Index f)
     return (b - a).cross(c - a);
 }
 
-// Does segment p-q cross triangle (a, b, c)? Endpoints touching count as crossing.
+} // namespace
+
 bool segmentHitsTriangle(
     const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c)
 {
@@ -46,8 +47,6 @@ bool segmentHitsTriangle(
     const double t = inv * e2.dot(qv);
     return t >= 0 && t <= 1;
 }
-
-} // namespace
 
 bool trianglesIntersect(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen::Vector3d& a2, const Eigen::Vector3d& b0,
     const Eigen::Vector3d& b1, const Eigen::Vector3d& b2)

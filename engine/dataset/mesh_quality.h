@@ -30,6 +30,11 @@ std::vector<std::pair<int, int>> foldedEdges(const Mesh& mesh, double maxAngleDe
 /// Uses a uniform grid of about the mean edge length, so it runs in near-linear time.
 std::vector<std::pair<int, int>> selfIntersections(const Mesh& mesh);
 
+/// True if segment p-q crosses triangle (a, b, c) (Moller-Trumbore); an endpoint or edge
+/// touching counts as crossing, a segment parallel to the triangle's plane does not.
+bool segmentHitsTriangle(
+    const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
 /// True if triangles (a0, a1, a2) and (b0, b1, b2) intersect (an edge of one crosses the
 /// other). Coplanar overlaps are not reported.
 bool trianglesIntersect(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen::Vector3d& a2, const Eigen::Vector3d& b0,

@@ -2,12 +2,15 @@
 
 #include "core/error.h"
 #include "dataset/manifest.h"
+#include "dataset/mesh_quality.h"
+#include "geometry/normals.h"
 #include "geometry/similarity.h"
 #include "registration/surface_query.h"
 
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <utility>
 
@@ -62,7 +65,8 @@ std::vector<int> centralOwner(const Vertices& V, const Vertices& points, double 
 
 struct Sample {
     double distance, weight;
-    int group; // index into kRegions
+    int group;     // index into kRegions
+    bool enclosed; // enclosedVertices
 };
 
 SurfaceDistance summarise(const std::string& region, std::vector<Sample> samples)
@@ -91,20 +95,25 @@ SurfaceDistance summarise(const std::string& region, std::vector<Sample> samples
 }
 
 // Distances from the central vertices of `from` to the skin of `to`, appended to `out`;
-// returns the uncovered area.
+// returns the uncovered area and adds the enclosed area to `enclosedArea`.
 double measure(const Vertices& from, const Triangles& fromF, const std::vector<int>& owner, const std::vector<int>& ownerGroup,
-    const registration::SurfaceQuery& to, std::vector<Sample>& out)
+    const registration::SurfaceQuery& to, double reach, std::vector<Sample>& out, double& enclosedArea)
 {
     const Eigen::VectorXd area = vertexAreas(from, fromF);
+    std::vector<int> central;
+    for (Eigen::Index v = 0; v < from.rows(); ++v)
+        if (owner[static_cast<size_t>(v)] >= 0 && area(v) > 0)
+            central.push_back(static_cast<int>(v));
+    const std::vector<char> enclosed = enclosedVertices(Mesh { from, fromF }, central, reach);
     double uncovered = 0;
-    for (Eigen::Index v = 0; v < from.rows(); ++v) {
-        const int o = owner[static_cast<size_t>(v)];
-        if (o < 0 || area(v) <= 0)
-            continue;
+    for (size_t k = 0; k < central.size(); ++k) {
+        const int v = central[k];
         const registration::ClosestPoint c = to.closest(from.row(v).transpose());
         if (c.onBoundary)
             uncovered += area(v);
-        out.push_back({ c.distance, area(v), ownerGroup[static_cast<size_t>(o)] });
+        if (enclosed[k])
+            enclosedArea += area(v);
+        out.push_back({ c.distance, area(v), ownerGroup[static_cast<size_t>(owner[static_cast<size_t>(v)])], enclosed[k] != 0 });
     }
     return uncovered;
 }
@@ -180,6 +189,35 @@ FaceSet loadFaceSet(const dataset::Dataset& ds)
     return set;
 }
 
+std::vector<char> enclosedVertices(const Mesh& mesh, const std::vector<int>& vertices, double reach)
+{
+    const Vertices N = vertexNormals(mesh);
+    const Eigen::Index nf = mesh.F.rows();
+    Eigen::MatrixX3d lo(nf, 3), hi(nf, 3);
+    for (Eigen::Index f = 0; f < nf; ++f) {
+        lo.row(f) = mesh.V.row(mesh.F(f, 0)).cwiseMin(mesh.V.row(mesh.F(f, 1))).cwiseMin(mesh.V.row(mesh.F(f, 2)));
+        hi.row(f) = mesh.V.row(mesh.F(f, 0)).cwiseMax(mesh.V.row(mesh.F(f, 1))).cwiseMax(mesh.V.row(mesh.F(f, 2)));
+    }
+    std::vector<char> out(vertices.size(), 0);
+    for (size_t k = 0; k < vertices.size(); ++k) {
+        const int v = vertices[k];
+        const Eigen::Vector3d n = N.row(v).transpose();
+        if (n.squaredNorm() == 0)
+            continue;
+        const Eigen::Vector3d p = mesh.V.row(v).transpose() + 0.01 * n, q = mesh.V.row(v).transpose() + reach * n;
+        const Eigen::RowVector3d slo = p.cwiseMin(q).transpose(), shi = p.cwiseMax(q).transpose();
+        for (Eigen::Index f = 0; f < nf && !out[k]; ++f) {
+            if ((lo.row(f).array() > shi.array()).any() || (hi.row(f).array() < slo.array()).any())
+                continue;
+            if (mesh.F(f, 0) == v || mesh.F(f, 1) == v || mesh.F(f, 2) == v)
+                continue;
+            out[k] = dataset::segmentHitsTriangle(
+                p, q, mesh.V.row(mesh.F(f, 0)).transpose(), mesh.V.row(mesh.F(f, 1)).transpose(), mesh.V.row(mesh.F(f, 2)).transpose());
+        }
+    }
+    return out;
+}
+
 Eigen::VectorXd vertexAreas(const Vertices& V, const Triangles& F)
 {
     Eigen::VectorXd area = Eigen::VectorXd::Zero(V.rows());
@@ -237,6 +275,8 @@ RealismReport evaluateRealism(const FaceSet& data, const FaceSet& reference, con
     requireUsable(reference);
     if (std::isnan(options.regionRadius) || options.regionRadius <= 0)
         fail("eval realism: region radius ", options.regionRadius, " mm is not positive");
+    if (!std::isfinite(options.enclosedReach) || options.enclosedReach <= 0)
+        fail("eval realism: enclosed reach ", options.enclosedReach, " mm is not a positive number");
 
     RealismReport report;
     std::vector<int> groupOf; // per shared landmark, index into kRegions
@@ -274,15 +314,19 @@ RealismReport evaluateRealism(const FaceSet& data, const FaceSet& reference, con
     const registration::SurfaceQuery dataSurface(Mesh { dataAligned, data.triangles });
     const registration::SurfaceQuery refSurface(Mesh { refMean, reference.triangles });
     std::vector<Sample> all;
-    report.dataUncovered = measure(dataAligned, data.triangles, dataOwner, groupOf, refSurface, all);
+    const double reach = options.enclosedReach;
+    report.dataUncovered = measure(dataAligned, data.triangles, dataOwner, groupOf, refSurface, reach, all, report.dataEnclosed);
     for (const Sample& s : all)
         report.dataArea += s.weight;
     const size_t dataCount = all.size();
-    report.referenceUncovered = measure(refMean, reference.triangles, refOwner, groupOf, dataSurface, all);
+    report.referenceUncovered = measure(refMean, reference.triangles, refOwner, groupOf, dataSurface, reach, all, report.referenceEnclosed);
     for (size_t k = dataCount; k < all.size(); ++k)
         report.referenceArea += all[k].weight;
 
     report.distances.push_back(summarise("all", all));
+    std::vector<Sample> open;
+    std::copy_if(all.begin(), all.end(), std::back_inserter(open), [](const Sample& s) { return !s.enclosed; });
+    report.open = summarise("open", std::move(open));
     for (int g = 0; g < static_cast<int>(std::size(kRegions)); ++g) {
         std::vector<Sample> part;
         for (const Sample& s : all)

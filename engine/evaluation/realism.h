@@ -28,6 +28,15 @@
 //   mouth  ls, sto, li, ch, cph   chin   sl, pg, gn
 // (_l and _r for paired names, docs/dataset-format.md).
 //
+// Enclosed surfaces. A central vertex is *enclosed* when the ray along its outward normal meets
+// its own skin again within `enclosedReach` (30 mm): the surface faces back into the face, as
+// the insides of the nostrils do (ICT-FaceKit models each nasal vestibule as a closed pocket
+// reaching about 12 mm up into the nose) and the inner lips. A face whose skin has no such
+// pocket (the generator's skin is a radial height field, face_generator.h) is far from those
+// surfaces by construction, so the report also gives the distance with every enclosed vertex of
+// either set left out (`open`), and each set's enclosed area. `open` is a diagnostic beside the
+// figures above, not a replacement for them (docs/realism.md).
+//
 // Spectrum. The number of principal components that hold 90, 95 and 99% of a set's shape
 // variance, from the singular values of the centred data matrix (samples by 3#V; never the
 // 3#V by 3#V covariance). Coordinates are as stored (no per-face alignment: the face model,
@@ -62,7 +71,8 @@ struct FaceSet {
 FaceSet loadFaceSet(const dataset::Dataset& dataset);
 
 struct RealismOptions {
-    double regionRadius = 25.0; ///< mm around the central landmarks
+    double regionRadius = 25.0;  ///< mm around the central landmarks
+    double enclosedReach = 30.0; ///< mm along the normal within which a surface counts as enclosed
 };
 
 /// Nearest-surface distances over one part of the central region, both directions pooled.
@@ -91,6 +101,9 @@ struct RealismReport {
     double dataUncovered = 0.0;                 ///< mm^2 of the data's central region off the reference skin
     double referenceUncovered = 0.0;            ///< and the reverse
     std::vector<SurfaceDistance> distances;     ///< "all" first, then each region with area
+    double dataEnclosed = 0.0;                  ///< mm^2 of the data's central region that is enclosed
+    double referenceEnclosed = 0.0;             ///< and of the reference's
+    SurfaceDistance open;                       ///< "open": as "all" without the enclosed vertices of either set
     Spectrum dataSkin, dataCentral, referenceSkin, referenceCentral;
 };
 
@@ -105,6 +118,12 @@ RealismReport evaluateRealism(const FaceSet& data, const FaceSet& reference, con
 /// count is the smallest k whose leading variances sum to at least that fraction of the total.
 /// Throws Error for fewer than 2 samples or a weight count other than #V.
 Spectrum shapeSpectrum(const Eigen::MatrixXd& shapes, const Eigen::VectorXd& weights = {});
+
+/// Which of `vertices` (indices into mesh.V) are enclosed: the segment from the vertex, along
+/// its outward unit normal (geometry/normals.h; counter-clockwise triangles seen from outside),
+/// from 0.01 mm to `reach` mm, crosses a triangle of the mesh not incident to the vertex. One
+/// flag per entry of `vertices`. Cost: O(#vertices x #F) box tests.
+std::vector<char> enclosedVertices(const Mesh& mesh, const std::vector<int>& vertices, double reach);
 
 /// Area of each vertex: a third of the areas of its triangles, mm^2. #V values.
 Eigen::VectorXd vertexAreas(const Vertices& V, const Triangles& F);

@@ -1,6 +1,6 @@
 // Tests of evaluation/realism: the mean-face distance on sets with known answers (a set against a
 // moved, turned and scaled copy of itself; two parallel planes), spectra with known mode
-// counts, loading a dataset in cm, and bad input.
+// counts, enclosed surfaces (a sheet under a flap), loading a dataset in cm, and bad input.
 #include "evaluation/realism.h"
 
 #include "core/error.h"
@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/QR>
 #include <cmath>
+#include <numeric>
 
 using namespace facesketch;
 using namespace facesketch::evaluation;
@@ -128,6 +129,11 @@ TEST_CASE("realism: two planes 3 mm apart under the same landmarks are 3 mm apar
         REQUIRE(d.p95 == Approx(3.0).epsilon(1e-12));
         REQUIRE(d.max == Approx(3.0).epsilon(1e-12));
     }
+    // Nothing faces back into either plane, so `open` is all of it.
+    REQUIRE(r.dataEnclosed == 0);
+    REQUIRE(r.referenceEnclosed == 0);
+    REQUIRE(r.open.area == Approx(r.distances.front().area).epsilon(1e-12));
+    REQUIRE(r.open.rms == Approx(3.0).epsilon(1e-12));
     // The landmarks are eyes, nose and mouth points: those regions and no others.
     std::vector<std::string> regions;
     for (size_t k = 1; k < r.distances.size(); ++k)
@@ -152,6 +158,64 @@ TEST_CASE("realism: half a plane lifted by 3 mm gives a 95th percentile of 3 mm 
     REQUIRE(all.p95 > 2.9);
     REQUIRE(all.rms > 1.0);
     REQUIRE(all.rms < 2.9);
+}
+
+TEST_CASE("realism: enclosed vertices are those whose normal meets the mesh again within reach")
+{
+    // A sheet (facing +z) with a smaller flap 5 mm above it facing down at it, like the two
+    // walls of a nostril's pocket; the flap covers the sheet's middle only.
+    const Mesh sheet = makeGrid(11, 11, 50, 50), flap = makeGrid(5, 5, 20, 20);
+    const Eigen::Index ns = sheet.V.rows();
+    Mesh m;
+    m.V.resize(ns + flap.V.rows(), 3);
+    m.V << sheet.V, flap.V;
+    m.V.bottomRows(flap.V.rows()).col(2).setConstant(5);
+    m.F.resize(sheet.F.rows() + flap.F.rows(), 3);
+    m.F << sheet.F, flap.F.col(0).array() + static_cast<int>(ns), flap.F.col(2).array() + static_cast<int>(ns),
+        flap.F.col(1).array() + static_cast<int>(ns); // reversed: the flap faces -z
+    std::vector<int> all(static_cast<size_t>(m.V.rows()));
+    std::iota(all.begin(), all.end(), 0);
+
+    const std::vector<char> hit = enclosedVertices(m, all, 30);
+    for (Eigen::Index v = 0; v < m.V.rows(); ++v) {
+        INFO("vertex " << v << " at " << m.V.row(v));
+        const bool underFlap = v < ns && std::abs(m.V(v, 0)) <= 10 && std::abs(m.V(v, 1)) <= 10;
+        REQUIRE(bool(hit[static_cast<size_t>(v)]) == (v >= ns || underFlap));
+    }
+    // Out of reach, nothing is enclosed; the sheet alone has nothing enclosed.
+    for (char h : enclosedVertices(m, all, 4.9))
+        REQUIRE(!h);
+    std::vector<int> sheetOnly(static_cast<size_t>(ns));
+    std::iota(sheetOnly.begin(), sheetOnly.end(), 0);
+    for (char h : enclosedVertices(sheet, sheetOnly, 30))
+        REQUIRE(!h);
+}
+
+TEST_CASE("realism: `open` leaves out the enclosed surfaces of either set")
+{
+    // The reference is the data's plane plus a flap 4 mm above its centre facing down at it:
+    // the flap is 4 mm from the data and enclosed; so is the reference plane under it.
+    const FaceSet data = planeSet(0);
+    FaceSet reference = data;
+    reference.name = "plane with a flap";
+    const Mesh flap = makeGrid(5, 5, 20, 20);
+    const Eigen::Index nv = data.shapes.cols() / 3, nf = data.triangles.rows();
+    reference.shapes.conservativeResize(Eigen::NoChange, 3 * (nv + flap.V.rows()));
+    for (Eigen::Index s = 0; s < reference.shapes.rows(); ++s)
+        for (Eigen::Index v = 0; v < flap.V.rows(); ++v)
+            reference.shapes.block<1, 3>(s, 3 * (nv + v)) << flap.V(v, 0), flap.V(v, 1), 4.0;
+    reference.triangles.conservativeResize(nf + flap.F.rows(), 3);
+    for (Eigen::Index f = 0; f < flap.F.rows(); ++f)
+        reference.triangles.row(nf + f) << flap.F(f, 0) + nv, flap.F(f, 2) + nv, flap.F(f, 1) + nv;
+
+    const RealismReport r = evaluateRealism(data, reference);
+    REQUIRE(r.dataEnclosed == 0);
+    REQUIRE(r.referenceEnclosed > 2 * 400 * 0.9); // the flap (20 x 20 mm) and the plane under it
+    REQUIRE(r.distances.front().max == Approx(4.0).epsilon(1e-12));
+    REQUIRE(r.open.region == "open");
+    REQUIRE(r.open.area == Approx(r.distances.front().area - r.referenceEnclosed).epsilon(1e-12));
+    REQUIRE(r.open.max < 1e-9);
+    REQUIRE(r.open.rms < r.distances.front().rms);
 }
 
 TEST_CASE("shape spectrum: a set with a known spectrum gives known mode counts")
@@ -264,6 +328,10 @@ TEST_CASE("realism: bad input names the set and the value")
     bad.name = "badmark";
     bad.landmarks["prn"] = 100000;
     REQUIRE_THROWS_WITH(evaluateRealism(bad, data), Catch::Contains("badmark: landmark prn: vertex 100000"));
+
+    RealismOptions far;
+    far.enclosedReach = std::nan("");
+    REQUIRE_THROWS_WITH(evaluateRealism(data, data, far), Catch::Contains("enclosed reach nan mm"));
 
     REQUIRE_THROWS_WITH(shapeSpectrum(data.shapes, Eigen::VectorXd::Ones(3)), Catch::Contains("3 weights"));
 }
