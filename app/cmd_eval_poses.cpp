@@ -61,7 +61,8 @@ void runEvalPoses(const EvalPosesCommand& c)
             perPose.push_back(
                 { { "pose", p.pose }, { "task", p.task }, { "method", p.method }, { "mean_mm", p.meanMm }, { "neutral_mm", p.neutralMm } });
         const nlohmann::json doc { { "model", c.model }, { "dataset", c.dataset }, { "vertices", m.vertexCount },
-            { "identities", e.identities }, { "results", results }, { "per_pose", perPose } };
+            { "identities", e.identities }, { "role", c.identities }, { "endpoint_weight", c.strokes.reading.endpointWeight },
+            { "results", results }, { "per_pose", perPose } };
         writeFileAtomically(c.json, [&](std::ostream& out) { out << doc.dump(1) << "\n"; });
         std::cout << "wrote " << c.json << "\n";
     }

@@ -38,9 +38,18 @@ endif()
 
 # The fitting run: the 3 contour identities, with another endpoint weight; out-of-range values
 # and other identities are refused.
-run(eval poses ${WORK}/posed.poses ${WORK}/posed --identities contour --endpoint-weight 2)
+run(eval poses ${WORK}/posed.poses ${WORK}/posed --identities contour --endpoint-weight 2 --json ${WORK}/poses-contour.json)
 if(NOT out MATCHES "# 3 contour identities of" OR NOT out MATCHES "strokes +statistical +35 ")
   message(FATAL_ERROR "eval poses --identities contour printed: ${out}")
+endif()
+# The JSON says which identities and which reading it measured (the default run's too).
+file(READ ${WORK}/poses-contour.json contourDoc)
+string(JSON role GET "${contourDoc}" role)
+string(JSON weight GET "${contourDoc}" endpoint_weight)
+string(JSON count GET "${contourDoc}" identities)
+string(JSON defaultRole GET "${doc}" role)
+if(NOT role STREQUAL "contour" OR NOT weight EQUAL 2 OR NOT count EQUAL 3 OR NOT defaultRole STREQUAL "test")
+  message(FATAL_ERROR "eval poses JSON: role ${role}, endpoint weight ${weight}, identities ${count}, default role ${defaultRole}")
 endif()
 expect_failure("endpoint-weight" eval poses ${WORK}/posed.poses ${WORK}/posed --endpoint-weight 0.5)
 expect_failure("identities" eval poses ${WORK}/posed.poses ${WORK}/posed --identities train)
