@@ -36,13 +36,26 @@ Eigen::Vector3d direction(double theta, double phi)
 
 namespace {
 
-// The azimuth at which the neutral skin at elevation phi reaches x = target.
+// The azimuth at which the neutral skin at elevation phi reaches x = target: 8 fixed-point
+// steps, then secant steps, which converge where the radius changes fast with the azimuth (the
+// lower nose's steep flank at al left the fixed point 0.07 mm short; issue 16).
 double solveTheta(const Frame& f, double target, double phi, double start)
 {
     double theta = start;
     for (int i = 0; i < 8; ++i) {
         const double r = neutralRadius(f, theta, phi) * std::cos(phi);
         theta = std::asin(std::clamp(target / r, -0.99, 0.99));
+    }
+    auto x = [&](double t) { return neutralRadius(f, t, phi) * std::cos(phi) * std::sin(t); };
+    double prev = theta * 0.999, gPrev = x(prev) - target;
+    for (int i = 0; i < 6; ++i) {
+        const double g = x(theta) - target;
+        if (std::abs(g) < 1e-9 || g == gPrev)
+            break;
+        const double next = theta - g * (theta - prev) / (g - gPrev);
+        prev = theta;
+        gPrev = g;
+        theta = next;
     }
     return theta;
 }

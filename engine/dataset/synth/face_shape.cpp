@@ -1,6 +1,7 @@
 // Vertices of the synthetic face (face_generator.h) from its frame (face_frame.h): the star-shaped
 // skin r(theta, phi) as base + bone (nose, brows, sockets, cheekbones, chin) + soft tissue
-// (lips, philtrum, cheeks, eyebrows, detail), eyelids resting on the eyeballs, the pose
+// (lips, philtrum, cheeks, eyebrows, detail), the nostrils' vestibules pushed into the nose,
+// eyelids resting on the eyeballs, the pose
 // deformers that slide skin over that structure and turn the jaw, and the eyeball, teeth and
 // tongue meshes.
 //
@@ -22,6 +23,30 @@ namespace {
 
 constexpr double kSide = 100.0 * M_PI / 180.0; // the grid reaches 10 degrees behind the ears
 constexpr double kSupratip = 1.0;              // mm, the supratip break's depth (bone(): nose)
+
+// The lower nose (issue 16, docs/realism.md "Nostrils"): from prn down, and blending into the
+// dorsum over the first kLobuleBlend of the way up to n, the nose's cross-section is wider and
+// fuller than the dorsum's: 0.88 (1 - |x|^a)^b with x the offset over kLobuleSpread tip widths
+// (1.6 on the dorsum), a = kLobuleSquare (2) and b = kLobuleFullness (1.3), so it has room for
+// the nostrils' vestibules.
+constexpr double kLobuleSpread = 2.2;
+constexpr double kLobuleSquare = 2.4;
+constexpr double kLobuleFullness = 0.7;
+constexpr double kLobuleBlend = 0.4;
+constexpr double kNostrilDimple = 0.45; // the nostril's radial dimple, in tip heights
+
+// Nostril vestibules: the skin inside each nostril's opening (the footprint below, centred
+// kVestibuleX of the way out to al and kVestibuleAt of the way from sn to prn) is moved up into the
+// nose and back, along (0, 1, -kVestibuleBack), by up to kVestibuleDepth mm, smoothly from the
+// footprint's rim, and never closer than kVestibuleWall mm to the far side of the neutral skin.
+constexpr double kVestibuleX = 0.37;
+constexpr double kVestibuleAt = 0.4;
+constexpr double kVestibuleRX = 1.55;    // footprint half-width, in nostril sizes
+constexpr double kVestibuleRPhi = 0.45;  // footprint half-height, as a fraction of sn..prn
+constexpr double kVestibuleDepth = 12.0; // mm
+constexpr double kVestibuleFloor = 0.0;  // the depth is full inside this fraction of the footprint
+constexpr double kVestibuleBack = 2.5;
+constexpr double kVestibuleWall = 1.0; // mm
 
 // Radial height of nose, brows, sockets, cheekbones and chin: the parts that do not slide.
 double bone(const Frame& f, double theta, double phi, double X, double Y, const FaceActions& act)
@@ -51,8 +76,10 @@ double bone(const Frame& f, double theta, double phi, double X, double Y, const 
             height -= kSupratip * (1 - std::exp(-sq(s / 4))) * std::exp(-sq((s - 12) / 9));
             halfWidth = lerp(p.tipWidth, p.bridgeWidth, smoothstep(0, 0.55, t)) + 2.5 * smoothstep(0.6, 1, t);
         }
-        const double x = ax / (halfWidth * 1.6);
-        const double cross = x < 1 ? 0.88 * std::pow(1 - x * x, 1.3) : 0;
+        const double lower = phi <= f.phiPrn ? 1.0 : 1 - smoothstep(0, kLobuleBlend, (phi - f.phiPrn) / (f.phiN - f.phiPrn));
+        const double x = ax / (halfWidth * lerp(1.6, kLobuleSpread, lower));
+        const double cross
+            = x < 1 ? 0.88 * std::pow(1 - std::pow(x, lerp(2.0, kLobuleSquare, lower)), lerp(1.3, kLobuleFullness, lower)) : 0;
         body = height * (cross + 0.12 * std::exp(-sq(X / (2.4 * halfWidth))));
     }
     const double ra = p.alaSize * (1 + 0.04 * act.noseWrinkle);
@@ -64,7 +91,7 @@ double bone(const Frame& f, double theta, double phi, double X, double Y, const 
     const double phiNostril = lerp(f.phiSn, f.phiPrn, 0.4);
     const double dn = sq((ax - 0.45 * p.alal / 2) / (0.8 * p.nostrilSize)) + sq((phi - phiNostril) / (0.25 * (f.phiPrn - f.phiSn)));
     if (dn < 1)
-        r -= 0.3 * f.noseTip * sq(1 - dn);
+        r -= kNostrilDimple * f.noseTip * sq(1 - dn);
 
     // Brow ridge over each orbit, and the glabella between them.
     const double browLateral = smoothstep(4, 14, ax) * (1 - smoothstep(p.exex / 2, p.exex / 2 + 18, ax));
@@ -284,6 +311,41 @@ double skinRadius(
     return smax(face, cover + (eyeMargin ? 0.6 : 1.2), 1.0);
 }
 
+// Where vertex (theta0, phi0) of the neutral chart, at neutral position x0, moves into its
+// nostril's vestibule: zero outside the footprint. The one displacement of the skin that is not
+// radial (a radial height cannot turn up into the nose). Its direction points back, towards
+// the head's centre, more than up, so the skin stays star-shaped about the origin (the
+// face_shape tests check it); pointing more upwards folded the alar rim on the high grid.
+Eigen::Vector3d vestibule(const Frame& f, double theta0, double phi0)
+{
+    const FaceParams& p = f.p;
+    const double ax = std::abs(rhoBase(f, theta0, phi0) * std::sin(theta0));
+    const double ex = (ax - kVestibuleX * p.alal / 2) / (kVestibuleRX * p.nostrilSize);
+    const double ep = (phi0 - lerp(f.phiSn, f.phiPrn, kVestibuleAt)) / (kVestibuleRPhi * (f.phiPrn - f.phiSn));
+    const double rho = std::hypot(ex, ep);
+    if (rho >= 1)
+        return Eigen::Vector3d::Zero();
+    const Eigen::Vector3d x0 = neutralRadius(f, theta0, phi0) * direction(theta0, phi0);
+    const Eigen::Vector3d dir = Eigen::Vector3d(0, 1, -kVestibuleBack).normalized();
+    // The room: how far along dir the ray stays inside the neutral skin (1 mm steps, then
+    // bisection to 0.01 mm; a 0.1 mm march made `bench synth` twice as slow).
+    auto inside = [&](double t) {
+        const Eigen::Vector3d q = x0 + t * dir;
+        return q.norm() < neutralRadius(f, std::atan2(q.x(), q.z()), std::atan2(q.y(), std::hypot(q.x(), q.z())));
+    };
+    const double wanted = kVestibuleDepth * (1 - smoothstep(kVestibuleFloor, 1, rho));
+    double exit = wanted + kVestibuleWall; // only the room up to the depth wanted matters
+    for (double step = std::min(1.0, exit), last = 0.0; last < exit; last = step, step = std::min(step + 1, exit))
+        if (!inside(step)) {
+            double lo = last, hi = step;
+            while (hi - lo > 0.01)
+                (inside((lo + hi) / 2) ? lo : hi) = (lo + hi) / 2;
+            exit = hi;
+            break;
+        }
+    return std::min(std::max(0.0, exit - kVestibuleWall), wanted) * dir;
+}
+
 } // namespace
 
 double detail::neutralRadius(const Frame& f, double theta, double phi)
@@ -369,7 +431,7 @@ Vertices synthesizeFace(const FaceTopology& t, const FaceParams& params, const F
         const auto [theta0, phi0] = chart(sv.row, sv.col);
         const ChartPoint cp = warp(f, theta0, phi0, sv.slit, sv.row == K[3], act);
         const double r = skinRadius(f, cp.theta, cp.phi, theta0, phi0, sv.slit, act, sv.slit != 0 && sv.row == K[3]);
-        const Eigen::Vector3d x = jawMove(r * direction(cp.theta, cp.phi), cp.jaw);
+        const Eigen::Vector3d x = jawMove(r * direction(cp.theta, cp.phi), cp.jaw) + vestibule(f, theta0, phi0);
         V.row(static_cast<Eigen::Index>(i)) = x.transpose();
     }
 
