@@ -1,9 +1,8 @@
 // Vertices of the synthetic face (face_generator.h) from its frame (face_frame.h): the star-shaped
 // skin r(theta, phi) as base + bone (nose, brows, sockets, cheekbones, chin) + soft tissue
 // (lips, philtrum, cheeks, eyebrows, detail), the nostrils' vestibules pushed into the nose,
-// eyelids resting on the eyeballs, the pose
-// deformers that slide skin over that structure and turn the jaw, and the eyeball, teeth and
-// tongue meshes.
+// eyelids resting on the eyeballs, the pose deformers that slide skin over that structure and
+// turn the jaw, and the eyeball, teeth and tongue meshes.
 //
 // Sources: proportions from Farkas LG, Anthropometry of the Head and Face, 2nd ed., 1994
 // (face_params.cpp); the landmark set of thesis Table 3.1; the 36 poses of thesis 5.2.
@@ -24,7 +23,7 @@ namespace {
 constexpr double kSide = 100.0 * M_PI / 180.0; // the grid reaches 10 degrees behind the ears
 constexpr double kSupratip = 1.0;              // mm, the supratip break's depth (bone(): nose)
 
-// The lower nose (issue 16, docs/realism.md "Nostrils"): from prn down, and blending into the
+// The lower nose (issue 16, docs/realism.md "nostril vestibules"): from prn down, blending into the
 // dorsum over the first kLobuleBlend of the way up to n, the nose's cross-section is wider and
 // fuller than the dorsum's: 0.88 (1 - |x|^a)^b with x the offset over kLobuleSpread tip widths
 // (1.6 on the dorsum), a = kLobuleSquare (2) and b = kLobuleFullness (1.3), so it has room for
