@@ -31,11 +31,11 @@
 // Enclosed surfaces. A central vertex is *enclosed* when the ray along its outward normal meets
 // its own skin again within `enclosedReach` (30 mm): the surface faces back into the face, as
 // the insides of the nostrils do (ICT-FaceKit models each nasal vestibule as a closed pocket
-// reaching about 12 mm up into the nose) and the inner lips. A face whose skin has no such
-// pocket (the generator's skin is a radial height field, face_generator.h) is far from those
-// surfaces by construction, so the report also gives the distance with every enclosed vertex of
-// either set left out (`open`), and each set's enclosed area. `open` is a diagnostic beside the
-// figures above, not a replacement for them (docs/realism.md).
+// reaching about 11 mm up into the nose) and the inner lips. A face whose skin has no such
+// pocket (the generator's was a radial height field until its nostril vestibules) is far from
+// those surfaces by construction, so the report also gives the distance with every enclosed
+// vertex of either set left out (`open`), and each set's enclosed area. `open` is a diagnostic
+// beside the figures above, not a replacement for them (docs/realism.md).
 //
 // Spectrum. The number of principal components that hold 90, 95 and 99% of a set's shape
 // variance, from the singular values of the centred data matrix (samples by 3#V; never the
