@@ -310,7 +310,7 @@ double skinRadius(
     return smax(face, cover + (eyeMargin ? 0.6 : 1.2), 1.0);
 }
 
-// Where vertex (theta0, phi0) of the neutral chart, at neutral position x0, moves into its
+// How far vertex (theta0, phi0) of the neutral chart moves, from its neutral position, into its
 // nostril's vestibule: zero outside the footprint. The one displacement of the skin that is not
 // radial (a radial height cannot turn up into the nose). Its direction points back, towards
 // the head's centre, more than up, so the skin stays star-shaped about the origin (the
