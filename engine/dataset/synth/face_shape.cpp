@@ -32,7 +32,14 @@ constexpr double kLobuleSpread = 2.2;
 constexpr double kLobuleSquare = 2.4;
 constexpr double kLobuleFullness = 0.7;
 constexpr double kLobuleBlend = 0.4;
-constexpr double kNostrilDimple = 0.45; // the nostril's radial dimple, in tip heights
+// The nostril's radial dimple: kNostrilDimple tip heights deep, kNostrilDimpleX nostril sizes
+// wide and kNostrilDimplePhi of sn..prn tall (half-axes). At 0.8 and 0.25 (v6) a 9 mm pit over 3 mm
+// had walls so steep that the quad between two rows of the high grid folded (normals more than
+// 150 degrees apart) on 18 of 250 faces (seed 1); at 1.2 and 0.45 none of 250 high faces of seeds 1
+// and 3, 100 low or 2 ultra faces folds, at the same mean-face distance (docs/realism.md).
+constexpr double kNostrilDimple = 0.45;
+constexpr double kNostrilDimpleX = 1.2;
+constexpr double kNostrilDimplePhi = 0.45;
 
 // Nostril vestibules: the skin inside each nostril's opening (the footprint below, centred
 // kVestibuleX of the way out to al and kVestibuleAt of the way from sn to prn) is moved up into the
@@ -88,7 +95,8 @@ double bone(const Frame& f, double theta, double phi, double X, double Y, const 
     const double ala = da < 1 ? (0.34 * f.noseTip + 2.0) * std::pow(1 - da, 1.1) : 0;
     r += smax(body, ala, 6.0);
     const double phiNostril = lerp(f.phiSn, f.phiPrn, 0.4);
-    const double dn = sq((ax - 0.45 * p.alal / 2) / (0.8 * p.nostrilSize)) + sq((phi - phiNostril) / (0.25 * (f.phiPrn - f.phiSn)));
+    const double dn = sq((ax - 0.45 * p.alal / 2) / (kNostrilDimpleX * p.nostrilSize))
+        + sq((phi - phiNostril) / (kNostrilDimplePhi * (f.phiPrn - f.phiSn)));
     if (dn < 1)
         r -= kNostrilDimple * f.noseTip * sq(1 - dn);
 
