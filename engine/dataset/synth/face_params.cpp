@@ -84,7 +84,9 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
     // against an ICT import and the signed map of tools/realism-landmarks.py --map; then (3
     // December) together with kFieldMeans (above) by a regularised Gauss-Newton fit of all these
     // means to that distance (docs/realism.md, "Now (3 December, later)"), each move penalised by its
-    // size in SDs so none goes far from the population it describes. The Farkas draws above are
+    // size in SDs so none goes far from the population it describes; refitted the same way around
+    // the nostril vestibules (3 December, night), with the tip's and the lips' means held (moved,
+    // the lips broke the HMM's reading of the upper lip). The Farkas draws above are
     // anthropometric norms and were left alone.
     p.tipProtrusion = n(22.5 - 1.5 * s, 1.8); // ICT: 20.5 before
     p.tipRise = n(8.5 - 1.5 * aging, 1.2);    // ICT: 4.5 before (prn was 7 mm too near sn)

@@ -36,7 +36,8 @@ constexpr double kLobuleBlend = 0.4;
 // wide and kNostrilDimplePhi of sn..prn tall (half-axes). At 0.8 and 0.25 (v6) a 9 mm pit over 3 mm
 // had walls so steep that the quad between two rows of the high grid folded (normals more than
 // 150 degrees apart) on 18 of 250 faces (seed 1); at 1.2 and 0.45 none of 250 high faces of seeds 1
-// and 3, 100 low or 2 ultra faces folds, at the same mean-face distance (docs/realism.md).
+// and 3, 100 low or 3 ultra faces folds, and the mean-face distance to ICT is 0.02 mm nearer
+// (docs/realism.md, "Now (3 December, night)").
 constexpr double kNostrilDimple = 0.45;
 constexpr double kNostrilDimpleX = 1.2;
 constexpr double kNostrilDimplePhi = 0.45;
