@@ -26,8 +26,8 @@ constexpr double kSupratip = 1.0;              // mm, the supratip break's depth
 // The lower nose (issue 16, docs/realism.md "nostril vestibules"): from prn down, blending into the
 // dorsum over the first kLobuleBlend of the way up to n, the nose's cross-section is wider and
 // fuller than the dorsum's: 0.88 (1 - |x|^a)^b with x the offset over kLobuleSpread tip widths
-// (1.6 on the dorsum), a = kLobuleSquare (2) and b = kLobuleFullness (1.3), so it has room for
-// the nostrils' vestibules.
+// (1.6 on the dorsum), a = kLobuleSquare (2 on the dorsum) and b = kLobuleFullness (1.3 on the
+// dorsum), so it has room for the nostrils' vestibules.
 constexpr double kLobuleSpread = 2.2;
 constexpr double kLobuleSquare = 2.4;
 constexpr double kLobuleFullness = 0.7;
