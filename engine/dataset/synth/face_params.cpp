@@ -45,13 +45,13 @@ double normDraw(const Norm& n, bool female, double g, double z)
 // from the midline out (shapeField): the smooth part of the ICT-FaceKit mean face the
 // parameters cannot reach, fitted with the parameter means (sampleFaceParams, "ICT").
 constexpr double kFieldMeans[28] = {
-    0.4, 0.6, -2.2, -1.5,  // forehead
-    3.2, 1.6, 1.8, -0.6,   // brows
-    6.8, -8.0, -3.1, -2.8, // eyes
-    1.9, 2.4, -1.8, 0.2,   // nose, upper cheeks
-    9.2, -2.0, 1.1, -0.1,  // mouth, lower cheeks
-    1.9, -2.4, 4.1, 0.3,   // chin, jaw
-    -8.0, -0.2, 0.3, 0.3,  // under the chin
+    0.5, 0.6, -2.4, -2.0,  // forehead
+    3.3, 1.5, 1.8, -0.8,   // brows
+    7.1, -8.8, -3.7, -3.2, // eyes
+    1.3, 2.7, -2.3, 0.2,   // nose, upper cheeks
+    10.0, -2.3, 1.1, -0.2, // mouth, lower cheeks
+    1.3, -2.2, 4.5, 0.3,   // chin, jaw
+    -8.5, 0.1, 0.4, 0.4,   // under the chin
 };
 
 } // namespace
@@ -90,12 +90,12 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
     // anthropometric norms and were left alone.
     p.tipProtrusion = n(22.5 - 1.5 * s, 1.8); // ICT: 20.5 before
     p.tipRise = n(8.5 - 1.5 * aging, 1.2);    // ICT: 4.5 before (prn was 7 mm too near sn)
-    p.dorsumHump = n(0.6 - 0.5 * s, 0.9);     // ICT: 0.6, then 0.8 before
-    p.bridgeWidth = n(7.3 - 0.5 * s, 0.6);    // ICT: 6.5, then 7.2 before
-    p.tipWidth = n(6.9 - 0.6 * s, 0.7);       // ICT: 8.8, then 5.8, then 6.3 before
+    p.dorsumHump = n(0.5 - 0.5 * s, 0.9);     // ICT: 0.6, then 0.8, then 0.6 before
+    p.bridgeWidth = n(7.4 - 0.5 * s, 0.6);    // ICT: 6.5, then 7.2, then 7.3 before
+    p.tipWidth = n(7.0 - 0.6 * s, 0.7);       // ICT: 8.8, then 5.8, then 6.3, then 6.9 before
     p.alaSize = n(5.9 - 0.5 * s, 0.5);        // ICT: 7.0, then 6.0, then 5.7 before
-    p.nostrilSize = n(4.14 - 0.3 * s, 0.4);   // ICT: 3.6, then 3.7 before
-    p.nasionDepth = n(-0.3 - 0.5 * s, 1.2);   // ICT: 3.0, then 0.4 before
+    p.nostrilSize = n(4.32 - 0.3 * s, 0.4);   // ICT: 3.6, then 3.7, then 4.14 before
+    p.nasionDepth = n(-0.5 - 0.5 * s, 1.2);   // ICT: 3.0, then 0.4, then -0.3 before
 
     p.upperVermilion = n(10.4 - 0.4 * s - 1.5 * aging, 1.2); // ICT: 8.7 before
     p.lowerVermilion = n(10.2 - 0.5 * s - 1.5 * aging, 1.3); // ICT: 10.0 before
@@ -106,24 +106,24 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
     p.philtrumDepth = n(0.9, 0.25);
     p.cornerHeight = n(0.0 - 1.0 * aging, 0.8);
 
-    p.fissureHeight = n(10.6 - 1.2 * aging, 0.8); // ICT: 10.8, then 11.1 before
-    p.canthalTilt = n(4.6 + 0.5 * s, 1.0);        // ICT: 2.0, then 3.8 before
-    p.eyeSet = n(3.3, 1.2);                       // ICT: 6.5, then 3.1 before
-    p.browRidge = n(3.7 - 2.0 * s, 0.9);          // ICT: 4.0, then 3.4 before
-    p.browHeight = n(31.2 + 2.0 * s, 2.0);        // ICT: 17.0, then 25.0, then 30.0 before
+    p.fissureHeight = n(10.4 - 1.2 * aging, 0.8); // ICT: 10.8, then 11.1, then 10.6 before
+    p.canthalTilt = n(4.8 + 0.5 * s, 1.0);        // ICT: 2.0, then 3.8, then 4.6 before
+    p.eyeSet = n(3.4, 1.2);                       // ICT: 6.5, then 3.1, then 3.3 before
+    p.browRidge = n(3.8 - 2.0 * s, 0.9);          // ICT: 4.0, then 3.4, then 3.7 before
+    p.browHeight = n(31.5 + 2.0 * s, 2.0);        // ICT: 17.0, then 25.0, then 30.0, then 31.2 before
 
-    p.faceDepth = n(85.2 - 3.0 * s, 3.0) + 1.5 * g;        // ICT: 88.0, then 86.2 before
-    p.foreheadSlope = n(13.0 - 4.0 * s, 4.0);              // ICT: 8.0, then 10.8 before
-    p.headBreadth = n(155.6 - 7.0 * s, 5.0) + 2.0 * g;     // ICT: 154.0, then 154.4 before
-    p.cheekboneWidth = n(138.8 - 8.2 * s, 5.3) + 2.0 * g;  // ICT: 139.1, then 139.0 before
+    p.faceDepth = n(85.0 - 3.0 * s, 3.0) + 1.5 * g;        // ICT: 88.0, then 86.2, then 85.2 before
+    p.foreheadSlope = n(14.0 - 4.0 * s, 4.0);              // ICT: 8.0, then 10.8, then 13.0 before
+    p.headBreadth = n(156.7 - 7.0 * s, 5.0) + 2.0 * g;     // ICT: 154.0, then 154.4, then 155.6 before
+    p.cheekboneWidth = n(138.7 - 8.2 * s, 5.3) + 2.0 * g;  // ICT: 139.1, then 139.0, then 138.8 before
     p.cheekboneHeight = n(0.3, 1.0);                       // ICT: 3.5, then 0.5 before
-    p.cheekFullness = n(2.3 - 1.5 * aging + 0.5 * s, 1.0); // ICT: 2.5 before
-    p.jawWidth = n(107.9 - 7.4 * s, 5.5) + 2.0 * g;        // ICT: 104.0, then 107.1 before
-    p.jawAngle = n(-0.22 - 0.5 * s, 0.4);                  // ICT: 0.3, then 0.0 before
-    p.chinProjection = n(0.1 - 1.0 * s, 3.0);              // ICT: -2.0, then 0.2 before
-    p.chinWidth = n(14.2 - 1.5 * s, 1.8);                  // ICT: 15.0, then 14.7 before
-    p.chinHeight = n(4.2 - 0.8 * s, 0.8);                  // ICT: 2.5, then 3.3 before
-    p.neckWidth = n(114.0 - 15.0 * s, 6.0);                // ICT: 115.0, then 114.8 before
+    p.cheekFullness = n(2.2 - 1.5 * aging + 0.5 * s, 1.0); // ICT: 2.5, then 2.3 before
+    p.jawWidth = n(108.2 - 7.4 * s, 5.5) + 2.0 * g;        // ICT: 104.0, then 107.1, then 107.9 before
+    p.jawAngle = n(-0.37 - 0.5 * s, 0.4);                  // ICT: 0.3, then 0.0, then -0.22 before
+    p.chinProjection = n(0.2 - 1.0 * s, 3.0);              // ICT: -2.0, then 0.2, then 0.1 before
+    p.chinWidth = n(13.9 - 1.5 * s, 1.8);                  // ICT: 15.0, then 14.7, then 14.2 before
+    p.chinHeight = n(4.6 - 0.8 * s, 0.8);                  // ICT: 2.5, then 3.3, then 4.2 before
+    p.neckWidth = n(113.7 - 15.0 * s, 6.0);                // ICT: 115.0, then 114.8, then 114.0 before
 
     // Fine detail: a few low bumps spread over the face, so no two faces are smooth copies.
     for (int i = 0; i < 14; ++i) {

@@ -46,14 +46,27 @@ constexpr double kNostrilDimplePhi = 0.45;
 // kVestibuleX of the way out to al and kVestibuleAt of the way from sn to prn) is moved up into the
 // nose and back, along (0, 1, -kVestibuleBack), by up to kVestibuleDepth mm, smoothly from the
 // footprint's rim, and never closer than kVestibuleWall mm to the far side of the neutral skin.
-constexpr double kVestibuleX = 0.37;
+constexpr double kVestibuleX = 0.30;
 constexpr double kVestibuleAt = 0.4;
 constexpr double kVestibuleRX = 1.55;    // footprint half-width, in nostril sizes
 constexpr double kVestibuleRPhi = 0.45;  // footprint half-height, as a fraction of sn..prn
-constexpr double kVestibuleDepth = 12.0; // mm
+constexpr double kVestibuleDepth = 13.0; // mm
 constexpr double kVestibuleFloor = 0.0;  // the depth is full inside this fraction of the footprint
-constexpr double kVestibuleBack = 2.5;
+constexpr double kVestibuleBack = 2.2;
 constexpr double kVestibuleWall = 1.0; // mm
+// v8 (docs/realism.md, "The nose from the front"): the footprint moved in from 0.37 to 0.30 of the
+// way to al, 13 mm deep (12) and steeper upwards (back 2.2, 2.5). Further out than 0.30 the quad
+// between the footprint's lateral edge and the alar rim (rows 30-31 of the high grid) folded on 2-4
+// of 250 high faces of seed 5 once the alae were lifted (below); at 0.30 none of seeds 1, 3, 5.
+
+// The alar lobule: an elliptic bump on each side of the lower nose, its centre kAlaAt of the way
+// from sn up to prn, its half-height kAlaAbove alar radii above the centre and kAlaBelow below.
+// Until v7 it sat at 0.55 with 0.85 both ways, and on the downward-facing underside the radial
+// bump grew down and forward into a tab that hung 2 mm below sn in front of the nostril, so from
+// the front each nostril showed as a dark notch between the columella and a tab.
+constexpr double kAlaAt = 0.8;
+constexpr double kAlaAbove = 0.85;
+constexpr double kAlaBelow = 0.4;
 
 // Radial height of nose, brows, sockets, cheekbones and chin: the parts that do not slide.
 double bone(const Frame& f, double theta, double phi, double X, double Y, const FaceActions& act)
@@ -91,8 +104,8 @@ double bone(const Frame& f, double theta, double phi, double X, double Y, const 
     }
     const double ra = p.alaSize * (1 + 0.04 * act.noseWrinkle);
     const double alaX = p.alal / 2 - ra;
-    const double alaY = lerp(f.ySn, f.yPrn, 0.55) + 0.6 * act.noseWrinkle;
-    const double da = sq((ax - alaX) / ra) + sq((Y - alaY) / (0.85 * ra));
+    const double alaY = lerp(f.ySn, f.yPrn, kAlaAt) + 0.6 * act.noseWrinkle;
+    const double da = sq((ax - alaX) / ra) + sq((Y - alaY) / ((Y < alaY ? kAlaBelow : kAlaAbove) * ra));
     const double ala = da < 1 ? (0.34 * f.noseTip + 2.0) * std::pow(1 - da, 1.1) : 0;
     r += smax(body, ala, 6.0);
     const double phiNostril = lerp(f.phiSn, f.phiPrn, 0.4);
