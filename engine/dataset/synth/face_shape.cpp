@@ -35,10 +35,9 @@ constexpr double kLobuleBlend = 0.4;
 // The nostril's radial dimple: kNostrilDimple tip heights deep, kNostrilDimpleX nostril sizes
 // wide and kNostrilDimplePhi of sn..prn tall (half-axes). At 0.8 and 0.25 (v6) a 9 mm pit over 3 mm
 // had walls so steep that the quad between two rows of the high grid folded (normals more than
-// 150 degrees apart) on 18 of 250 faces (seed 1); at 1.2 and 0.45 none of 250 high faces of seeds 1
-// and 3, 100 low or 3 ultra faces folds, and the mean-face distance to ICT is 0.02 mm nearer
-// (docs/realism.md, "Now (3 December, night)").
-constexpr double kNostrilDimple = 0.45;
+// 150 degrees apart) on 18 of 250 faces (seed 1); at 1.2 and 0.45 (v7) none did. Since v9 the
+// vestibule below makes the opening and the dimple only rounds its floor (0.45 deep until v8).
+constexpr double kNostrilDimple = 0.3;
 constexpr double kNostrilDimpleX = 1.2;
 constexpr double kNostrilDimplePhi = 0.45;
 
@@ -46,27 +45,36 @@ constexpr double kNostrilDimplePhi = 0.45;
 // kVestibuleX of the way out to al and kVestibuleAt of the way from sn to prn) is moved up into the
 // nose and back, along (0, 1, -kVestibuleBack), by up to kVestibuleDepth mm, smoothly from the
 // footprint's rim, and never closer than kVestibuleWall mm to the far side of the neutral skin.
-constexpr double kVestibuleX = 0.30;
+// The columella between the two footprints keeps its skin: within kColumellaHalf mm of the midline
+// nothing moves, and the depth reaches its full value at kColumellaHalf + kColumellaBlend.
+//
+// v9 (docs/realism.md, "Nostrils seen from below"): until v8 the footprints were 1.55 nostril sizes
+// wide and 0.45 of sn..prn tall, and the two of them together hollowed the whole underside of the
+// lobule, columella included, into one cavity that read from the front as a dark band and from
+// below as one hole. Now each is 1.2 by 0.35, further out (0.4 of the way to al, 0.30-0.37 before),
+// deeper (14 mm, 12-13 before) and the columella is kept; the high grid has 8 rows from prn to sn
+// (5 before, face_topology.cpp) to hold two openings with a columella between them.
+constexpr double kVestibuleX = 0.4;
 constexpr double kVestibuleAt = 0.4;
-constexpr double kVestibuleRX = 1.55;    // footprint half-width, in nostril sizes
-constexpr double kVestibuleRPhi = 0.45;  // footprint half-height, as a fraction of sn..prn
-constexpr double kVestibuleDepth = 13.0; // mm
+constexpr double kVestibuleRX = 1.2;     // footprint half-width, in nostril sizes
+constexpr double kVestibuleRPhi = 0.35;  // footprint half-height, as a fraction of sn..prn
+constexpr double kVestibuleDepth = 14.0; // mm
 constexpr double kVestibuleFloor = 0.0;  // the depth is full inside this fraction of the footprint
-constexpr double kVestibuleBack = 2.2;
-constexpr double kVestibuleWall = 1.0; // mm
-// v8 (docs/realism.md, "The nose from the front"): the footprint moved in from 0.37 to 0.30 of the
-// way to al, 13 mm deep (12) and steeper upwards (back 2.2, 2.5). Further out than 0.30 the quad
-// between the footprint's lateral edge and the alar rim (rows 30-31 of the high grid) folded on 2-4
-// of 250 high faces of seed 5 once the alae were lifted (below); at 0.30 none of seeds 1, 3, 5.
+// Back 2.4 (2.2 in v8, 2.5 before): at 2.2 the front wall of 14-17 faces in 250 turns one
+// triangle each towards the head's centre, at 2.4 of 0-5 (seeds 1, 3, 5, 7), and none folds.
+constexpr double kVestibuleBack = 2.4;
+constexpr double kVestibuleWall = 1.0;  // mm
+constexpr double kColumellaHalf = 1.5;  // mm
+constexpr double kColumellaBlend = 2.0; // mm
 
 // The alar lobule: an elliptic bump on each side of the lower nose, its centre kAlaAt of the way
 // from sn up to prn, its half-height kAlaAbove alar radii above the centre and kAlaBelow below.
 // Until v7 it sat at 0.55 with 0.85 both ways, and on the downward-facing underside the radial
 // bump grew down and forward into a tab that hung 2 mm below sn in front of the nostril, so from
-// the front each nostril showed as a dark notch between the columella and a tab.
-constexpr double kAlaAt = 0.8;
+// the front each nostril showed as a dark notch between the columella and a tab (v8: 0.8, 0.4).
+constexpr double kAlaAt = 0.9;
 constexpr double kAlaAbove = 0.85;
-constexpr double kAlaBelow = 0.4;
+constexpr double kAlaBelow = 0.3;
 
 // Radial height of nose, brows, sockets, cheekbones and chin: the parts that do not slide.
 double bone(const Frame& f, double theta, double phi, double X, double Y, const FaceActions& act)
@@ -354,7 +362,8 @@ Eigen::Vector3d vestibule(const Frame& f, double theta0, double phi0)
         const Eigen::Vector3d q = x0 + t * dir;
         return q.norm() < neutralRadius(f, std::atan2(q.x(), q.z()), std::atan2(q.y(), std::hypot(q.x(), q.z())));
     };
-    const double wanted = kVestibuleDepth * (1 - smoothstep(kVestibuleFloor, 1, rho));
+    const double wanted
+        = kVestibuleDepth * (1 - smoothstep(kVestibuleFloor, 1, rho)) * smoothstep(kColumellaHalf, kColumellaHalf + kColumellaBlend, ax);
     double exit = wanted + kVestibuleWall; // only the room up to the depth wanted matters
     for (double step = std::min(1.0, exit), last = 0.0; last < exit; last = step, step = std::min(step + 1, exit))
         if (!inside(step)) {

@@ -63,7 +63,9 @@ Spec spec(Resolution r)
     case Resolution::Low:
         return { { 3, 2, 3, 5 }, { 3, 1, 2, 5, 2, 2, 2, 2, 2, 2, 3 }, 6, 7, 7, 4, 4, 6 };
     case Resolution::High:
-        return { { 9, 6, 8, 14 }, { 8, 3, 6, 12, 5, 5, 5, 5, 5, 6, 8 }, 13, 13, 25, 8, 10, 14 };
+        // 8 rows from prn to sn and 9 from the eyes to prn (5 and 12 until v8): the nostrils'
+        // openings and the columella between them need rows (face_shape.cpp, vestibule()).
+        return { { 9, 6, 8, 14 }, { 8, 3, 6, 9, 8, 5, 5, 5, 5, 6, 8 }, 13, 13, 25, 8, 10, 14 };
     case Resolution::Ultra:
         return { { 19, 13, 17, 30 }, { 17, 6, 13, 25, 10, 11, 10, 10, 11, 12, 17 }, 24, 25, 49, 16, 20, 28 };
     }
@@ -271,10 +273,11 @@ void labelContours(FaceTopology& t)
     for (int& v : C["lip_lower_outer"])
         if (t.skin[static_cast<size_t>(v)].row == kSto && t.lowerCopy(kSto, t.skin[static_cast<size_t>(v)].col) >= 0)
             v = t.lowerCopy(kSto, t.skin[static_cast<size_t>(v)].col);
-    // Nostrils: a ring of grid vertices around the pit centre (face_shape.cpp puts the pit at
-    // 40% of the way from sn to prn and at nostrilColumn()).
+    // Nostrils: a ring of grid vertices around the opening's centre (face_shape.cpp centres the
+    // vestibule 40% of the way from sn to prn and 40% of the way out to al, which is column sEn on
+    // the nose's rows).
     const int rc = kSn - std::max(1, static_cast<int>(std::lround((kSn - kPrn) * 0.4)));
-    const int sc = std::max(1, static_cast<int>(std::lround(t.sEn * 0.45)));
+    const int sc = std::max(1, static_cast<int>(std::lround(t.sEn * 0.4)));
     const int dr = std::max(1, (kSn - kPrn) / 3), dc = std::max(1, t.sEn / 4);
     for (int side : { 1, -1 }) {
         std::vector<int>& ring = C[side > 0 ? "nostril_l" : "nostril_r"];

@@ -5,13 +5,18 @@
 #include "dataset/synth/face_generator.h"
 
 #include <catch2/catch.hpp>
+#include <cstdlib>
 #include <string>
 
 namespace facesketch::dataset::checks {
 
 // Degenerate, flipped, folded and intersecting triangles.
 // Flipped, for a neutral face (`reference` null): the skin is star-shaped about the origin
-// (face_generator.h) so no skin triangle may face it; eyeballs and tongue face away from their
+// (face_generator.h) so no skin triangle may face it, except in the nostrils: each vestibule is a
+// pocket going up into the nose from its underside (face_shape.cpp), and a few triangles of its
+// front wall face back, towards the origin. There, on the underside between the prn and sn rows and
+// within the alar columns, an inverted triangle still shows, as a fold against its neighbours
+// (foldedEdges below); eyeballs and tongue face away from their
 // centroids; the teeth keep the orientation of `teethReference` (any face of the topology).
 // For a pose, `reference` is the same face with only the pose's jaw rotation, and no
 // triangle may turn more than 90 degrees from it: the rigid jaw rotation is factored out, and
@@ -34,9 +39,15 @@ inline void requireClean(
             for (int f : flippedTriangles(mesh, *reference))
                 if (c.contains(mesh.F(f, 0)))
                     flipped.push_back(f);
-        } else if (c.name == "skin")
-            flipped = trianglesFacingCentre(mesh, Eigen::Vector3d::Zero(), tris);
-        else if (c.name.rfind("teeth", 0) == 0) {
+        } else if (c.name == "skin") {
+            auto inNostril = [&](int v) {
+                const SkinVertex& sv = t.skin[static_cast<size_t>(v - c.begin)];
+                return sv.row >= t.rowKnot[4] && sv.row <= t.rowKnot[5] && std::abs(sv.col - t.mid) <= t.sEn;
+            };
+            for (int f : trianglesFacingCentre(mesh, Eigen::Vector3d::Zero(), tris))
+                if (!(inNostril(mesh.F(f, 0)) && inNostril(mesh.F(f, 1)) && inNostril(mesh.F(f, 2))))
+                    flipped.push_back(f);
+        } else if (c.name.rfind("teeth", 0) == 0) {
             for (int f : flippedTriangles(mesh, teethReference))
                 if (c.contains(mesh.F(f, 0)))
                     flipped.push_back(f);
