@@ -36,7 +36,7 @@ constexpr double kLobuleBlend = 0.4;
 // wide and kNostrilDimplePhi of sn..prn tall (half-axes). At 0.8 and 0.25 (v6) a 9 mm pit over 3 mm
 // had walls so steep that the quad between two rows of the high grid folded (normals more than
 // 150 degrees apart) on 18 of 250 faces (seed 1); at 1.2 and 0.45 (v7) none did. Since v9 the
-// vestibule below makes the opening and the dimple only rounds its floor (0.45 deep until v8).
+// vestibule below makes the opening and the dimple deepens its floor, 0.3 deep (0.45 until v8).
 constexpr double kNostrilDimple = 0.3;
 constexpr double kNostrilDimpleX = 1.2;
 constexpr double kNostrilDimplePhi = 0.45;
@@ -48,7 +48,7 @@ constexpr double kNostrilDimplePhi = 0.45;
 // The columella between the two footprints keeps its skin: within kColumellaHalf mm of the midline
 // nothing moves, and the depth reaches its full value at kColumellaHalf + kColumellaBlend.
 //
-// v9 (docs/realism.md, "Nostrils seen from below"): until v8 the footprints were 1.55 nostril sizes
+// v9 (docs/realism.md, "Now (3 December, late)"): until v8 the footprints were 1.55 nostril sizes
 // wide and 0.45 of sn..prn tall, and the two of them together hollowed the whole underside of the
 // lobule, columella included, into one cavity that read from the front as a dark band and from
 // below as one hole. Now each is 1.2 by 0.35, further out (0.4 of the way to al, 0.30-0.37 before),

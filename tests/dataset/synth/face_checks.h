@@ -40,12 +40,12 @@ inline void requireClean(
                 if (c.contains(mesh.F(f, 0)))
                     flipped.push_back(f);
         } else if (c.name == "skin") {
-            auto inNostril = [&](int v) {
+            auto onNoseUnderside = [&](int v) {
                 const SkinVertex& sv = t.skin[static_cast<size_t>(v - c.begin)];
                 return sv.row >= t.rowKnot[4] && sv.row <= t.rowKnot[5] && std::abs(sv.col - t.mid) <= t.sEn;
             };
             for (int f : trianglesFacingCentre(mesh, Eigen::Vector3d::Zero(), tris))
-                if (!(inNostril(mesh.F(f, 0)) && inNostril(mesh.F(f, 1)) && inNostril(mesh.F(f, 2))))
+                if (!(onNoseUnderside(mesh.F(f, 0)) && onNoseUnderside(mesh.F(f, 1)) && onNoseUnderside(mesh.F(f, 2))))
                     flipped.push_back(f);
         } else if (c.name.rfind("teeth", 0) == 0) {
             for (int f : flippedTriangles(mesh, teethReference))
