@@ -68,13 +68,18 @@ constexpr double kColumellaHalf = 1.5;  // mm
 constexpr double kColumellaBlend = 2.0; // mm
 
 // The alar lobule: an elliptic bump on each side of the lower nose, its centre kAlaAt of the way
-// from sn up to prn, its half-height kAlaAbove alar radii above the centre and kAlaBelow below.
-// Until v7 it sat at 0.55 with 0.85 both ways, and on the downward-facing underside the radial
-// bump grew down and forward into a tab that hung 2 mm below sn in front of the nostril, so from
-// the front each nostril showed as a dark notch between the columella and a tab (v8: 0.8, 0.4).
+// from sn up to prn, its half-height kAlaAbove alar radii above the centre and kAlaBelow below,
+// kAlaHeight times (0.34 tip heights + 2 mm) high. Until v7 it sat at 0.55 with 0.85 both ways,
+// full height, and on the downward-facing underside the radial bump grew down and forward into a
+// tab that hung 2 mm below sn in front of the nostril, so from the front each nostril showed as a
+// dark notch between the columella and a tab. v8 and v9 lifted it (0.8 / 0.4, then 0.9 / 0.3); a
+// bump that tall falling over so short a half-axis left a knob at each alar base, seen from the
+// front and the three-quarter view. v10: 0.6 below and 0.6 of the height, a rounder lobe; the
+// mean-face distance to ICT moves by 0.01 mm (docs/realism.md, "Now (3 December, late)").
 constexpr double kAlaAt = 0.9;
 constexpr double kAlaAbove = 0.85;
-constexpr double kAlaBelow = 0.3;
+constexpr double kAlaBelow = 0.6;
+constexpr double kAlaHeight = 0.6;
 
 // Radial height of nose, brows, sockets, cheekbones and chin: the parts that do not slide.
 double bone(const Frame& f, double theta, double phi, double X, double Y, const FaceActions& act)
@@ -114,7 +119,7 @@ double bone(const Frame& f, double theta, double phi, double X, double Y, const 
     const double alaX = p.alal / 2 - ra;
     const double alaY = lerp(f.ySn, f.yPrn, kAlaAt) + 0.6 * act.noseWrinkle;
     const double da = sq((ax - alaX) / ra) + sq((Y - alaY) / ((Y < alaY ? kAlaBelow : kAlaAbove) * ra));
-    const double ala = da < 1 ? (0.34 * f.noseTip + 2.0) * std::pow(1 - da, 1.1) : 0;
+    const double ala = da < 1 ? kAlaHeight * (0.34 * f.noseTip + 2.0) * std::pow(1 - da, 1.1) : 0;
     r += smax(body, ala, 6.0);
     const double phiNostril = lerp(f.phiSn, f.phiPrn, 0.4);
     const double dn = sq((ax - 0.45 * p.alal / 2) / (kNostrilDimpleX * p.nostrilSize))
