@@ -15,7 +15,10 @@
 // and the orbital sockets, whose parts the measures place). Because each ray meets the skin
 // once the skin cannot fold or cross itself, except where the topology is cut: two slits, one per eye
 // between en and ex and one for the mouth between the lip corners, whose upper and lower edges
-// are separate vertices pulled apart in (theta, phi) to open the eyes and part the lips.
+// are separate vertices pulled apart in (theta, phi) to open the eyes and part the lips. One
+// displacement is not radial: each nostril's vestibule, a pocket pushed up and back into the nose
+// from its underside (face_shape.cpp vestibule()), so there the skin is not star-shaped and a few
+// triangles of a pocket's wall face C; the fold and intersection checks cover it (tests).
 // Eyelids are kept a fixed gap above the eyeballs (ellipsoids behind each eye opening), so
 // moving a lid margin in (theta, phi) makes it slide over the eyeball.
 //
