@@ -14,6 +14,13 @@
 
 namespace facesketch::dataset::detail {
 
+// Where each nostril opens on the nose's underside: kNostrilAt of the way from sn up to prn and
+// kNostrilOut of the way from the midline out to al. face_shape.cpp centres the nostril's
+// vestibule (and the dimple's height) there; face_topology.cpp rings that point with the
+// labelled nostril contour and hides the vertices inside it.
+constexpr double kNostrilAt = 0.4;
+constexpr double kNostrilOut = 0.4;
+
 inline double smoothstep(double e0, double e1, double x)
 {
     const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);

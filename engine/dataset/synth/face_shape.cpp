@@ -42,9 +42,10 @@ constexpr double kNostrilDimpleX = 1.2;
 constexpr double kNostrilDimplePhi = 0.45;
 
 // Nostril vestibules: the skin inside each nostril's opening (the footprint below, centred
-// kVestibuleX of the way out to al and kVestibuleAt of the way from sn to prn) is moved up into the
-// nose and back, along (0, 1, -kVestibuleBack), by up to kVestibuleDepth mm, smoothly from the
-// footprint's rim, and never closer than kVestibuleWall mm to the far side of the neutral skin.
+// kNostrilOut of the way out to al and kNostrilAt of the way from sn to prn, face_frame.h) is
+// moved up into the nose and back, along (0, 1, -kVestibuleBack), by up to kVestibuleDepth mm,
+// smoothly from the footprint's rim, and never closer than kVestibuleWall mm to the far side of
+// the neutral skin.
 // The columella between the two footprints keeps its skin: within kColumellaHalf mm of the midline
 // nothing moves, and the depth reaches its full value at kColumellaHalf + kColumellaBlend.
 //
@@ -54,8 +55,6 @@ constexpr double kNostrilDimplePhi = 0.45;
 // below as one hole. Now each is 1.2 by 0.35, further out (0.4 of the way to al, 0.30-0.37 before),
 // deeper (14 mm, 12-13 before) and the columella is kept; the high grid has 8 rows from prn to sn
 // (5 before, face_topology.cpp) to hold two openings with a columella between them.
-constexpr double kVestibuleX = 0.4;
-constexpr double kVestibuleAt = 0.4;
 constexpr double kVestibuleRX = 1.2;     // footprint half-width, in nostril sizes
 constexpr double kVestibuleRPhi = 0.35;  // footprint half-height, as a fraction of sn..prn
 constexpr double kVestibuleDepth = 14.0; // mm
@@ -121,7 +120,7 @@ double bone(const Frame& f, double theta, double phi, double X, double Y, const 
     const double da = sq((ax - alaX) / ra) + sq((Y - alaY) / ((Y < alaY ? kAlaBelow : kAlaAbove) * ra));
     const double ala = da < 1 ? kAlaHeight * (0.34 * f.noseTip + 2.0) * std::pow(1 - da, 1.1) : 0;
     r += smax(body, ala, 6.0);
-    const double phiNostril = lerp(f.phiSn, f.phiPrn, 0.4);
+    const double phiNostril = lerp(f.phiSn, f.phiPrn, kNostrilAt);
     const double dn = sq((ax - 0.45 * p.alal / 2) / (kNostrilDimpleX * p.nostrilSize))
         + sq((phi - phiNostril) / (kNostrilDimplePhi * (f.phiPrn - f.phiSn)));
     if (dn < 1)
@@ -347,17 +346,20 @@ double skinRadius(
 
 // How far vertex (theta0, phi0) of the neutral chart moves, from its neutral position, into its
 // nostril's vestibule: zero outside the footprint. The one displacement of the skin that is not
-// radial (a radial height cannot turn up into the nose). Its direction points back, towards
-// the head's centre, more than up, so the skin stays star-shaped about the origin (the
-// face_shape tests check it); pointing more upwards folded the alar rim on the high grid.
+// radial (a radial height cannot turn up into the nose). Its direction points back more than up:
+// pointing more upwards turned more of a pocket's front wall towards the head's centre and, on v7's
+// grid, folded the alar rim (the face_shape tests check both, docs/realism.md).
 Eigen::Vector3d vestibule(const Frame& f, double theta0, double phi0)
 {
     const FaceParams& p = f.p;
     const double ax = std::abs(rhoBase(f, theta0, phi0) * std::sin(theta0));
-    const double ex = (ax - kVestibuleX * p.alal / 2) / (kVestibuleRX * p.nostrilSize);
-    const double ep = (phi0 - lerp(f.phiSn, f.phiPrn, kVestibuleAt)) / (kVestibuleRPhi * (f.phiPrn - f.phiSn));
+    const double ex = (ax - kNostrilOut * p.alal / 2) / (kVestibuleRX * p.nostrilSize);
+    const double ep = (phi0 - lerp(f.phiSn, f.phiPrn, kNostrilAt)) / (kVestibuleRPhi * (f.phiPrn - f.phiSn));
     const double rho = std::hypot(ex, ep);
-    if (rho >= 1)
+    const double wanted = rho >= 1
+        ? 0.0
+        : kVestibuleDepth * (1 - smoothstep(kVestibuleFloor, 1, rho)) * smoothstep(kColumellaHalf, kColumellaHalf + kColumellaBlend, ax);
+    if (wanted <= 0) // outside the footprint, or on the columella
         return Eigen::Vector3d::Zero();
     const Eigen::Vector3d x0 = neutralRadius(f, theta0, phi0) * direction(theta0, phi0);
     const Eigen::Vector3d dir = Eigen::Vector3d(0, 1, -kVestibuleBack).normalized();
@@ -367,8 +369,6 @@ Eigen::Vector3d vestibule(const Frame& f, double theta0, double phi0)
         const Eigen::Vector3d q = x0 + t * dir;
         return q.norm() < neutralRadius(f, std::atan2(q.x(), q.z()), std::atan2(q.y(), std::hypot(q.x(), q.z())));
     };
-    const double wanted
-        = kVestibuleDepth * (1 - smoothstep(kVestibuleFloor, 1, rho)) * smoothstep(kColumellaHalf, kColumellaHalf + kColumellaBlend, ax);
     double exit = wanted + kVestibuleWall; // only the room up to the depth wanted matters
     for (double step = std::min(1.0, exit), last = 0.0; last < exit; last = step, step = std::min(step + 1, exit))
         if (!inside(step)) {

@@ -4,6 +4,8 @@
 // (thesis 5.2: 40 skin, 4 tongue, 2 lower teeth) and the labelled contours (thesis 4.3.3).
 #include "dataset/synth/face_generator.h"
 
+#include "dataset/synth/face_frame.h"
+
 #include "core/error.h"
 #include "core/names.h"
 
@@ -273,11 +275,10 @@ void labelContours(FaceTopology& t)
     for (int& v : C["lip_lower_outer"])
         if (t.skin[static_cast<size_t>(v)].row == kSto && t.lowerCopy(kSto, t.skin[static_cast<size_t>(v)].col) >= 0)
             v = t.lowerCopy(kSto, t.skin[static_cast<size_t>(v)].col);
-    // Nostrils: a ring of grid vertices around the opening's centre (face_shape.cpp centres the
-    // vestibule 40% of the way from sn to prn and 40% of the way out to al, which is column sEn on
-    // the nose's rows).
-    const int rc = kSn - std::max(1, static_cast<int>(std::lround((kSn - kPrn) * 0.4)));
-    const int sc = std::max(1, static_cast<int>(std::lround(t.sEn * 0.4)));
+    // Nostrils: a ring of grid vertices around the opening's centre (face_frame.h kNostrilAt and
+    // kNostrilOut; al is column sEn on the nose's rows).
+    const int rc = kSn - std::max(1, static_cast<int>(std::lround((kSn - kPrn) * detail::kNostrilAt)));
+    const int sc = std::max(1, static_cast<int>(std::lround(t.sEn * detail::kNostrilOut)));
     const int dr = std::max(1, (kSn - kPrn) / 3), dc = std::max(1, t.sEn / 4);
     for (int side : { 1, -1 }) {
         std::vector<int>& ring = C[side > 0 ? "nostril_l" : "nostril_r"];
