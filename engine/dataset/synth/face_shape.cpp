@@ -59,9 +59,14 @@ constexpr double kVestibuleRX = 1.2;     // footprint half-width, in nostril siz
 constexpr double kVestibuleRPhi = 0.35;  // footprint half-height, as a fraction of sn..prn
 constexpr double kVestibuleDepth = 14.0; // mm
 constexpr double kVestibuleFloor = 0.0;  // the depth is full inside this fraction of the footprint
-// Back 2.4 (2.2 in v8, 2.5 before): at 2.2 the front wall of 14-17 faces in 250 turns one
-// triangle each towards the head's centre, at 2.4 of 0-5 (seeds 1, 3, 5, 7), and none folds.
-constexpr double kVestibuleBack = 2.4;
+// Back 1.6 (v11; 2.4 in v9-v10, 2.2 in v8, 2.5 before). Pointing further up, the pocket's walls
+// stand more nearly parallel to a front view's rays, so the opening reads dark from below and from
+// the front, as ICT's do, and the mean face comes 0.05 mm nearer ICT's (nose 2.01 -> 1.85 mm,
+// docs/realism.md "v11"). What bounds it: at 1.2 the nostril rims ride up to 12.1 mm above sn (the
+// face_shape test allows 12), at 0.6 a low face folds; at 1.6 no face folds and the rims stay
+// within 11.0 mm (seeds 1, 3, 5, 7). The pocket's front wall, seen from inside, faces the head's
+// centre on most faces (5 triangles a face; the tests exempt the nose's underside for this).
+constexpr double kVestibuleBack = 1.6;
 constexpr double kVestibuleWall = 1.0;  // mm
 constexpr double kColumellaHalf = 1.5;  // mm
 constexpr double kColumellaBlend = 2.0; // mm
@@ -346,9 +351,9 @@ double skinRadius(
 
 // How far vertex (theta0, phi0) of the neutral chart moves, from its neutral position, into its
 // nostril's vestibule: zero outside the footprint. The one displacement of the skin that is not
-// radial (a radial height cannot turn up into the nose). Its direction points back more than up:
-// pointing more upwards turned more of a pocket's front wall towards the head's centre and, on v7's
-// grid, folded the alar rim (the face_shape tests check both, docs/realism.md).
+// radial (a radial height cannot turn up into the nose). Its direction points back more than up
+// (kVestibuleBack): pointing further up folds the alar rim of low faces and lifts the nostril rims
+// too far (the face_shape tests check both, docs/realism.md).
 Eigen::Vector3d vestibule(const Frame& f, double theta0, double phi0)
 {
     const FaceParams& p = f.p;
