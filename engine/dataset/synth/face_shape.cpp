@@ -41,9 +41,10 @@ constexpr double kNostrilDimple = 0.3;
 constexpr double kNostrilDimpleX = 1.2;
 constexpr double kNostrilDimplePhi = 0.45;
 
-// Nostril vestibules: the skin inside each nostril's opening (the footprint below, centred
-// kNostrilOut of the way out to al and kNostrilAt of the way from sn to prn, face_frame.h) is
-// moved up into the nose and back, along (0, 1, -kVestibuleBack), by up to kVestibuleDepth mm,
+// Nostril vestibules: the skin inside each nostril's opening (the footprint, an ellipse in the
+// neutral chart centred kNostrilOut of the way out to al and kNostrilAt of the way from sn to prn,
+// with half-axes kNostrilHalfWidth nostril sizes and kNostrilHalfHeight of sn..prn, face_frame.h)
+// is moved up into the nose and back, along (0, 1, -kVestibuleBack), by up to kVestibuleDepth mm,
 // smoothly from the footprint's rim, and never closer than kVestibuleWall mm to the far side of
 // the neutral skin.
 // The columella between the two footprints keeps its skin: within kColumellaHalf mm of the midline
@@ -55,18 +56,18 @@ constexpr double kNostrilDimplePhi = 0.45;
 // below as one hole. Now each is 1.2 by 0.35, further out (0.4 of the way to al, 0.30-0.37 before),
 // deeper (14 mm, 12-13 before) and the columella is kept; the high grid has 8 rows from prn to sn
 // (5 before, face_topology.cpp) to hold two openings with a columella between them.
-constexpr double kVestibuleRX = 1.2;     // footprint half-width, in nostril sizes
-constexpr double kVestibuleRPhi = 0.35;  // footprint half-height, as a fraction of sn..prn
 constexpr double kVestibuleDepth = 14.0; // mm
-constexpr double kVestibuleFloor = 0.0;  // the depth is full inside this fraction of the footprint
-// Back 1.6 (v11; 2.4 in v9-v10, 2.2 in v8, 2.5 before). Pointing further up, the pocket's walls
-// stand more nearly parallel to a front view's rays, so the opening reads dark from below and from
-// the front, as ICT's do, and the mean face comes 0.05 mm nearer ICT's (nose 2.01 -> 1.85 mm,
-// docs/realism.md "v11"). What bounds it: at 1.2 the nostril rims ride up to 12.1 mm above sn (the
-// face_shape test allows 12), at 0.6 a low face folds; at 1.6 no face folds and the rims stay
-// within 11.0 mm (seeds 1, 3, 5, 7). The pocket's front wall, seen from inside, faces the head's
-// centre on most faces (5 triangles a face; the tests exempt the nose's underside for this).
-constexpr double kVestibuleBack = 1.6;
+// Back 1.4 since v12 (1.6 in v11, 2.4 in v9-v10, 2.2 in v8, 2.5 before). Pointing further up, the
+// pocket's walls stand more nearly parallel to the rays of a front or a below view, so without
+// any ambient occlusion in the renderer the opening reads dark from below and from the front, as
+// ICT's do, and the mean face comes nearer ICT's (nose 2.01 mm at 2.4, 1.81 at 1.4; docs/realism.md
+// "v11 and v12"). Until v12 the labelled nostril rings lay inside the footprints and rode up
+// into the pockets with them (up to 12.1 mm above sn at 1.2, over the face_shape test's 12); now
+// they lie on the rim (face_topology.cpp). What bounds it now: at 1.2 the pocket's front wall folds
+// (one face in 250 on seeds 5 and 7), at 1.3 and above none does (seeds 1, 3, 5, 7). That wall,
+// seen from inside the nose, faces the head's centre on every face (the tests exempt the nose's
+// underside for this).
+constexpr double kVestibuleBack = 1.4;
 constexpr double kVestibuleWall = 1.0;  // mm
 constexpr double kColumellaHalf = 1.5;  // mm
 constexpr double kColumellaBlend = 2.0; // mm
@@ -358,12 +359,12 @@ Eigen::Vector3d vestibule(const Frame& f, double theta0, double phi0)
 {
     const FaceParams& p = f.p;
     const double ax = std::abs(rhoBase(f, theta0, phi0) * std::sin(theta0));
-    const double ex = (ax - kNostrilOut * p.alal / 2) / (kVestibuleRX * p.nostrilSize);
-    const double ep = (phi0 - lerp(f.phiSn, f.phiPrn, kNostrilAt)) / (kVestibuleRPhi * (f.phiPrn - f.phiSn));
+    const double ex = (ax - kNostrilOut * p.alal / 2) / (kNostrilHalfWidth * p.nostrilSize);
+    const double ep = (phi0 - lerp(f.phiSn, f.phiPrn, kNostrilAt)) / (kNostrilHalfHeight * (f.phiPrn - f.phiSn));
     const double rho = std::hypot(ex, ep);
     const double wanted = rho >= 1
         ? 0.0
-        : kVestibuleDepth * (1 - smoothstep(kVestibuleFloor, 1, rho)) * smoothstep(kColumellaHalf, kColumellaHalf + kColumellaBlend, ax);
+        : kVestibuleDepth * (1 - smoothstep(0, 1, rho)) * smoothstep(kColumellaHalf, kColumellaHalf + kColumellaBlend, ax);
     if (wanted <= 0) // outside the footprint, or on the columella
         return Eigen::Vector3d::Zero();
     const Eigen::Vector3d x0 = neutralRadius(f, theta0, phi0) * direction(theta0, phi0);

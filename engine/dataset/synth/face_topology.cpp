@@ -275,11 +275,16 @@ void labelContours(FaceTopology& t)
     for (int& v : C["lip_lower_outer"])
         if (t.skin[static_cast<size_t>(v)].row == kSto && t.lowerCopy(kSto, t.skin[static_cast<size_t>(v)].col) >= 0)
             v = t.lowerCopy(kSto, t.skin[static_cast<size_t>(v)].col);
-    // Nostrils: a ring of grid vertices around the opening's centre (face_frame.h kNostrilAt and
-    // kNostrilOut; al is column sEn on the nose's rows).
+    // Nostrils: a ring of grid vertices on the opening's rim, around its centre (face_frame.h
+    // kNostrilAt and kNostrilOut; al is column sEn on the nose's rows) at the footprint's half-axes
+    // (kNostrilHalfHeight of the rows from prn to sn, kNostrilHalfWidthOfAl of the columns out to
+    // al). Until v12 the ring had two thirds of those half-axes (a third of the rows, a quarter of
+    // the columns), so on the high and ultra grids it lay inside the footprint and the vestibule
+    // carried it 1-11 mm up into the nose (mean 4.9 mm; on the rim now: 0.1 mm, at most 1.3).
     const int rc = kSn - std::max(1, static_cast<int>(std::lround((kSn - kPrn) * detail::kNostrilAt)));
     const int sc = std::max(1, static_cast<int>(std::lround(t.sEn * detail::kNostrilOut)));
-    const int dr = std::max(1, (kSn - kPrn) / 3), dc = std::max(1, t.sEn / 4);
+    const int dr = std::max(1, static_cast<int>(std::lround((kSn - kPrn) * detail::kNostrilHalfHeight)));
+    const int dc = std::max(1, static_cast<int>(std::lround(t.sEn * detail::kNostrilHalfWidthOfAl)));
     for (int side : { 1, -1 }) {
         std::vector<int>& ring = C[side > 0 ? "nostril_l" : "nostril_r"];
         for (int k = 0; k < 8; ++k) {
