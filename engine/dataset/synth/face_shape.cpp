@@ -362,9 +362,8 @@ Eigen::Vector3d vestibule(const Frame& f, double theta0, double phi0)
     const double ex = (ax - kNostrilOut * p.alal / 2) / (kNostrilHalfWidth * p.nostrilSize);
     const double ep = (phi0 - lerp(f.phiSn, f.phiPrn, kNostrilAt)) / (kNostrilHalfHeight * (f.phiPrn - f.phiSn));
     const double rho = std::hypot(ex, ep);
-    const double wanted = rho >= 1
-        ? 0.0
-        : kVestibuleDepth * (1 - smoothstep(0, 1, rho)) * smoothstep(kColumellaHalf, kColumellaHalf + kColumellaBlend, ax);
+    const double wanted
+        = rho >= 1 ? 0.0 : kVestibuleDepth * (1 - smoothstep(0, 1, rho)) * smoothstep(kColumellaHalf, kColumellaHalf + kColumellaBlend, ax);
     if (wanted <= 0) // outside the footprint, or on the columella
         return Eigen::Vector3d::Zero();
     const Eigen::Vector3d x0 = neutralRadius(f, theta0, phi0) * direction(theta0, phi0);
