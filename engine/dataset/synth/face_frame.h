@@ -22,11 +22,11 @@ constexpr double kNostrilAt = 0.4;
 constexpr double kNostrilOut = 0.4;
 // The opening's footprint (face_shape.cpp vestibule()): kNostrilHalfHeight of sn..prn tall and
 // kNostrilHalfWidth nostril sizes wide (half-axes). With the population's mean nostril size and
-// al-al (4.3 and 33.1 mm) the half-width is 0.315 of the way out to al: face_topology.cpp puts
-// the labelled nostril ring that far from the centre, on the opening's rim.
+// al-al (4.2 and 33.1 mm) the half-width is 0.30 of the way out to al: face_topology.cpp puts the
+// labelled nostril ring that far from the centre, on the opening's rim.
 constexpr double kNostrilHalfHeight = 0.35;
 constexpr double kNostrilHalfWidth = 1.2;
-constexpr double kNostrilHalfWidthOfAl = 0.315;
+constexpr double kNostrilHalfWidthOfAl = 0.30;
 
 inline double smoothstep(double e0, double e1, double x)
 {

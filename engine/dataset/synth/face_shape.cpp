@@ -65,8 +65,8 @@ constexpr double kVestibuleDepth = 14.0; // mm
 // into the pockets with them (up to 12.1 mm above sn at 1.2, over the face_shape test's 12); now
 // they lie on the rim (face_topology.cpp). What bounds it now: at 1.2 the pocket's front wall folds
 // (one face in 250 on seeds 5 and 7), at 1.3 and above none does (seeds 1, 3, 5, 7). That wall,
-// seen from inside the nose, faces the head's centre on every face (the tests exempt the nose's
-// underside for this).
+// seen from inside the nose, faces the head's centre on nearly every face (the tests exempt the
+// nose's underside for this).
 constexpr double kVestibuleBack = 1.4;
 constexpr double kVestibuleWall = 1.0;  // mm
 constexpr double kColumellaHalf = 1.5;  // mm
@@ -353,8 +353,8 @@ double skinRadius(
 // How far vertex (theta0, phi0) of the neutral chart moves, from its neutral position, into its
 // nostril's vestibule: zero outside the footprint. The one displacement of the skin that is not
 // radial (a radial height cannot turn up into the nose). Its direction points back more than up
-// (kVestibuleBack): pointing further up folds the alar rim of low faces and lifts the nostril rims
-// too far (the face_shape tests check both, docs/realism.md).
+// (kVestibuleBack): pointing further up folds the pocket's front wall (the face_shape tests check
+// for folds, docs/realism.md).
 Eigen::Vector3d vestibule(const Frame& f, double theta0, double phi0)
 {
     const FaceParams& p = f.p;
