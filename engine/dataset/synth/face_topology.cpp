@@ -278,7 +278,7 @@ void labelContours(FaceTopology& t)
     // Nostrils: a ring of grid vertices on the opening's rim, around its centre (face_frame.h
     // kNostrilAt and kNostrilOut; al is column sEn on the nose's rows) at the footprint's half-axes
     // (kNostrilHalfHeight of the rows from prn to sn, kNostrilHalfWidthOfAl of the columns out to
-    // al). Until v12 the ring had two thirds of those half-axes (a third of the rows, a quarter of
+    // al). Until v12 the ring had about 0.7 of those half-axes (a third of the rows, a quarter of
     // the columns), so on the high and ultra grids it lay inside the footprint and the vestibule
     // carried it 1-11 mm up into the nose (mean 4.9 mm; on the rim now: 0.1 mm, at most 1.3).
     const int rc = kSn - std::max(1, static_cast<int>(std::lround((kSn - kPrn) * detail::kNostrilAt)));
