@@ -14,7 +14,7 @@ packages=(
   xvfb xauth clang-format
   # gui: real X input events for the app's tests (tests/gui/*.sh); python3 checks their results
   xdotool
-  python3
+  python3 python3-numpy
   # glTF export (issue 13): tinygltf writes the .glb; chromium runs three.js on it in a test
   libtinygltf-dev
   chromium
