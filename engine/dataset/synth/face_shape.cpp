@@ -22,6 +22,10 @@ namespace {
 
 constexpr double kSide = 100.0 * M_PI / 180.0; // the grid reaches 10 degrees behind the ears
 constexpr double kSupratip = 1.0;              // mm, the supratip break's depth (bone(): nose)
+// The skin lip's shelf above and below the vermilion (soft()): from kShelfBlend mm past the
+// vermilion border on, it fades from kShelfFade of the way to each corner (v13).
+constexpr double kShelfFade = 0.4;
+constexpr double kShelfBlend = 3.0; // mm
 
 // The lower nose (issue 16, docs/realism.md "nostril vestibules"): from prn down, blending into the
 // dorsum over the first kLobuleBlend of the way up to n, the nose's cross-section is wider and
@@ -168,6 +172,28 @@ double upperWeight(const Frame& f, double a, double b, int slit)
     return upper ? 1 - corner * (1 - outside) : corner * outside;
 }
 
+// One lip's profile across it, as a fraction of its fullness: t is 0 at the slit and 1 at the
+// vermilion border (h mm from the slit). The vermilion rises from a groove at the slit to its
+// crest at t = crest and falls by `fall` to the border; beyond it the skin lip (the shelf)
+// starts at `shelf` and fades over shelfWidth mm. `lateral` is set to the taper across the
+// mouth that the profile is to be scaled by: the vermilion's own, blending into the shelf's
+// (see kShelfFade) over the shelf's first kShelfBlend mm.
+struct LipShape {
+    double crest, crestToBorder, fall, shelf, shelfWidth;
+};
+constexpr LipShape kUpperLip { 0.55, 0.45, 0.3, 0.7, 7 }, kLowerLip { 0.5, 0.5, 0.45, 0.55, 6 };
+
+double lipProfile(const LipShape& lip, double t, double h, double vermilionTaper, double shelfTaper, double& lateral)
+{
+    lateral = vermilionTaper;
+    if (t < lip.crest)
+        return -0.35 + 1.35 * (1 - sq(1 - t / lip.crest));
+    if (t < 1)
+        return 1 - lip.fall * sq((t - lip.crest) / lip.crestToBorder);
+    lateral = lerp(vermilionTaper, shelfTaper, smoothstep(0, kShelfBlend, (t - 1) * h));
+    return lip.shelf * std::exp(-sq((t - 1) * h / lip.shelfWidth));
+}
+
 // Soft tissue, evaluated where the vertex sits in the neutral face so it moves with the skin:
 // lips, philtrum, cheeks, eyebrows, fine detail, and the pose's radial offsets.
 double soft(const Frame& f, double theta0, double phi0, double X, double Y, int slit, const FaceActions& act)
@@ -177,35 +203,31 @@ double soft(const Frame& f, double theta0, double phi0, double X, double Y, int 
     const double b = midY(f, phi0) - f.ySto, a = theta0 / f.thetaCh;
     double r = 0;
 
-    // Lips: vermilion bulges meeting in a groove at the slit, thinning to the corners.
+    // Lips: vermilion bulges meeting in a groove at the slit, thinning to the corners. Above the
+    // upper vermilion and below the lower one the skin lip (the shelf) stands out too; the
+    // vermilion ends at the corners with a crease (the commissure), and the shelf, a few mm
+    // (kShelfBlend) from the border on, fades smoothly inside them from kShelfFade of the way out:
+    // scaled by the vermilion's taper all the way, whose slope is infinite at the corners, its
+    // sides were vertical creases above and below them, a box round the mouth (docs/realism.md,
+    // curvature maps).
     const bool upper = b > 1e-9 || (std::abs(b) <= 1e-9 && slit >= 0);
     const double press = 1 - 0.55 * act.lipPress;
-    if (std::abs(a) < 1) {
-        const double taper = std::sqrt(1 - a * a);
-        if (upper) {
-            const double h = p.upperVermilion * (0.3 + 0.7 * taper)
-                * (1 - 0.1 * p.cupidBow * std::exp(-sq(a / 0.09)) + 0.05 * p.cupidBow * std::exp(-sq((std::abs(a) - 0.22) / 0.1)));
-            const double t = b / h;
-            double shape;
-            if (t < 0.55)
-                shape = -0.35 + 1.35 * (1 - sq(1 - t / 0.55));
-            else if (t < 1)
-                shape = 1 - 0.3 * sq((t - 0.55) / 0.45);
-            else
-                shape = 0.7 * std::exp(-sq((t - 1) * h / 7));
-            r += p.upperLipFullness * press * std::pow(taper, 0.7) * shape;
-        } else {
-            const double h = p.lowerVermilion * (0.3 + 0.7 * taper);
-            const double t = -b / h;
-            double shape;
-            if (t < 0.5)
-                shape = -0.35 + 1.35 * (1 - sq(1 - t / 0.5));
-            else if (t < 1)
-                shape = 1 - 0.45 * sq((t - 0.5) / 0.5);
-            else
-                shape = 0.55 * std::exp(-sq((t - 1) * h / 6));
-            r += (p.lowerLipFullness * press - act.lowerLipTuck) * std::pow(taper, 0.7) * shape;
-        }
+    const double taper = std::abs(a) < 1 ? std::sqrt(1 - a * a) : 0.0;
+    const double vermilionTaper = std::pow(taper, 0.7);
+    const double shelfTaper = 1 - smoothstep(kShelfFade, 1, std::abs(a));
+    if (upper) {
+        const double h = p.upperVermilion * (0.3 + 0.7 * taper)
+            * (1 - 0.1 * p.cupidBow * std::exp(-sq(a / 0.09)) + 0.05 * p.cupidBow * std::exp(-sq((std::abs(a) - 0.22) / 0.1)));
+        double lateral = 0;
+        const double shape = lipProfile(kUpperLip, b / h, h, vermilionTaper, shelfTaper, lateral);
+        if (taper > 0)
+            r += p.upperLipFullness * press * lateral * shape;
+    } else {
+        const double h = p.lowerVermilion * (0.3 + 0.7 * taper);
+        double lateral = 0;
+        const double shape = lipProfile(kLowerLip, -b / h, h, vermilionTaper, shelfTaper, lateral);
+        if (taper > 0)
+            r += (p.lowerLipFullness * press - act.lowerLipTuck) * lateral * shape;
     }
     r -= 1.0 * std::exp(-sq((ax - half) / 4) - sq(b / 4)); // commissure
     r += act.lipsForward * std::exp(-std::pow(X / (half + 4), 4) - std::pow((b + 1) / 13, 4));

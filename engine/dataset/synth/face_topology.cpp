@@ -67,7 +67,10 @@ Spec spec(Resolution r)
     case Resolution::High:
         // 8 rows from prn to sn and 9 from the eyes to prn (5 and 12 until v8): the nostrils'
         // openings and the columella between them need rows (face_shape.cpp, vestibule()).
-        return { { 9, 6, 8, 14 }, { 8, 3, 6, 9, 8, 5, 5, 5, 5, 6, 8 }, 13, 13, 25, 8, 10, 14 };
+        // 5 rows from the brow to n and 6 from the top to the brow (3 and 8 until v12): the
+        // brow ridge lies between them, and on rows 7-10 mm apart it was a faceted bar
+        // (docs/realism.md, curvature maps); the forehead above it is nearly flat.
+        return { { 9, 6, 8, 14 }, { 6, 5, 6, 9, 8, 5, 5, 5, 5, 6, 8 }, 13, 13, 25, 8, 10, 14 };
     case Resolution::Ultra:
         return { { 19, 13, 17, 30 }, { 17, 6, 13, 25, 10, 11, 10, 10, 11, 12, 17 }, 24, 25, 49, 16, 20, 28 };
     }

@@ -6,8 +6,10 @@
 #include "face_checks.h"
 #include "test_common.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <utility>
 
 using namespace facesketch;
 using namespace facesketch::dataset;
@@ -149,6 +151,40 @@ TEST_CASE("face_shape: the nostril rings lie on the openings' rims")
             }
         }
     }
+}
+
+TEST_CASE("face_shape: the skin lip has no crease above or below the mouth's corners")
+{
+    // Along a grid row, the angle between consecutive edges at a vertex shrinks with the grid's
+    // spacing where the surface is smooth, and stays where it has a crease. v12 scaled the skin
+    // lip by the vermilion's taper, whose slope is infinite at the corners: the worst angle near
+    // a corner grew from about 22 degrees on the high grid to 33 on the ultra grid (6 faces).
+    auto worstTurnNearCorners = [](Resolution resolution) {
+        const FaceTopology t = buildFaceTopology(resolution);
+        const std::vector<int>& K = t.rowKnot;
+        const int reach = static_cast<int>(std::lround(0.2 * t.sCh));
+        double sum = 0;
+        for (int i = 0; i < 6; ++i) {
+            const Vertices V = synthesizeFace(t, sampleFaceParams(3, i));
+            auto turn = [&](int row, int col) {
+                const Eigen::RowVector3d u = V.row(t.grid(row, col)) - V.row(t.grid(row, col - 1));
+                const Eigen::RowVector3d w = V.row(t.grid(row, col + 1)) - V.row(t.grid(row, col));
+                return std::acos(std::clamp(u.normalized().dot(w.normalized()), -1.0, 1.0)) * 180.0 / M_PI;
+            };
+            double worst = 0;
+            // The skin lip: the rows between sn and ls, and between li and pg.
+            for (const auto& [first, last] : { std::pair { K[5] + 1, K[6] - 1 }, std::pair { K[8] + 1, K[9] - 1 } })
+                for (int row = first; row <= last; ++row)
+                    for (int side : { -1, 1 })
+                        for (int d = -reach; d <= reach; ++d)
+                            worst = std::max(worst, turn(row, t.mid + side * (t.sCh + d)));
+            sum += worst;
+        }
+        return sum / 6;
+    };
+    const double high = worstTurnNearCorners(Resolution::High), ultra = worstTurnNearCorners(Resolution::Ultra);
+    INFO("worst turn near the corners, mean of 6 faces: high " << high << " deg, ultra " << ultra << " deg");
+    CHECK(ultra < 0.75 * high);
 }
 
 TEST_CASE("face_shape: 100 low-resolution identities have no degenerate, flipped, folded or intersecting triangles")
