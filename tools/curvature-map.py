@@ -65,12 +65,13 @@ def mean_curvature(V, F):
     N /= np.linalg.norm(N, axis=1)[:, None] + 1e-12
     laplacian = np.zeros_like(V)
     triangle_area = np.linalg.norm(face_normal, axis=1) / 2
-    cots, obtuse = [], np.zeros((len(F), 3), bool)
+    cots, edges2, obtuse = [], [], np.zeros((len(F), 3), bool)
     for c, (i, j, k) in enumerate([(0, 1, 2), (1, 2, 0), (2, 0, 1)]):
         u, w = V[F[:, j]] - V[F[:, i]], V[F[:, k]] - V[F[:, i]]
         cot = (u * w).sum(1) / (np.linalg.norm(np.cross(u, w), axis=1) + 1e-12)  # angle at i, opposite edge j-k
         obtuse[:, c] = cot < 0
         cots.append(cot)
+        edges2.append(((u * u).sum(1), (w * w).sum(1)))  # squared lengths of corner i's edges to j and k
         d = V[F[:, k]] - V[F[:, j]]
         np.add.at(laplacian, F[:, j], cot[:, None] * d)
         np.add.at(laplacian, F[:, k], -cot[:, None] * d)
@@ -78,11 +79,12 @@ def mean_curvature(V, F):
     # areas instead, a sphere's H is off by up to 15% at the vertices of valence 5.
     area = np.zeros(n)
     any_obtuse = obtuse.any(1)
-    for c, (i, j, k) in enumerate([(0, 1, 2), (1, 2, 0), (2, 0, 1)]):
-        # Corner i's Voronoi part: its two edges, each times the cotangent of the angle opposite.
-        voronoi = ((V[F[:, j]] - V[F[:, i]]) ** 2).sum(1) * cots[(c + 2) % 3] + ((V[F[:, k]] - V[F[:, i]]) ** 2).sum(1) * cots[(c + 1) % 3]
+    for c in range(3):
+        # Corner c's Voronoi part: its two edges, each times the cotangent of the angle opposite.
+        to_j, to_k = edges2[c]
+        voronoi = to_j * cots[(c + 2) % 3] + to_k * cots[(c + 1) % 3]
         part = np.where(any_obtuse, np.where(obtuse[:, c], triangle_area / 2, triangle_area / 4), voronoi / 8)
-        np.add.at(area, F[:, i], part)
+        np.add.at(area, F[:, c], part)
     # Summed over a vertex's edges, the cotangent weights give -4 H n A (A: the vertex's area;
     # outward n, convex H > 0), since the Laplace-Beltrami operator of the position is -2 H n.
     H = -(laplacian * N).sum(1) / (4 * np.maximum(area, 1e-12))

@@ -212,22 +212,21 @@ double soft(const Frame& f, double theta0, double phi0, double X, double Y, int 
     // curvature maps).
     const bool upper = b > 1e-9 || (std::abs(b) <= 1e-9 && slit >= 0);
     const double press = 1 - 0.55 * act.lipPress;
+    // Both tapers are 0 from the corners out (|a| >= 1), so the lips add nothing there.
     const double taper = std::abs(a) < 1 ? std::sqrt(1 - a * a) : 0.0;
     const double vermilionTaper = std::pow(taper, 0.7);
     const double shelfTaper = 1 - smoothstep(kShelfFade, 1, std::abs(a));
     if (upper) {
         const double h = p.upperVermilion * (0.3 + 0.7 * taper)
             * (1 - 0.1 * p.cupidBow * std::exp(-sq(a / 0.09)) + 0.05 * p.cupidBow * std::exp(-sq((std::abs(a) - 0.22) / 0.1)));
-        double lateral = 0;
+        double lateral;
         const double shape = lipProfile(kUpperLip, b / h, h, vermilionTaper, shelfTaper, lateral);
-        if (taper > 0)
-            r += p.upperLipFullness * press * lateral * shape;
+        r += p.upperLipFullness * press * lateral * shape;
     } else {
         const double h = p.lowerVermilion * (0.3 + 0.7 * taper);
-        double lateral = 0;
+        double lateral;
         const double shape = lipProfile(kLowerLip, -b / h, h, vermilionTaper, shelfTaper, lateral);
-        if (taper > 0)
-            r += (p.lowerLipFullness * press - act.lowerLipTuck) * lateral * shape;
+        r += (p.lowerLipFullness * press - act.lowerLipTuck) * lateral * shape;
     }
     r -= 1.0 * std::exp(-sq((ax - half) / 4) - sq(b / 4)); // commissure
     r += act.lipsForward * std::exp(-std::pow(X / (half + 4), 4) - std::pow((b + 1) / 13, 4));
