@@ -59,12 +59,19 @@ TEST_CASE("head_model: 15% random vertices of held-out synthetic faces give unde
 TEST_CASE("head_model: one feature region of about 15% of the vertices gives under half the mean-face error")
 {
     const test::TrainedSynth& t = test::trainedSynth();
+    // Scored on every face the model was not trained on, the test and the contour roles (33):
+    // the ten test faces alone put the ratio anywhere from 0.39 to 0.50 by the fixture's seed
+    // (seeds 11-14, on the v13 and v14 generators alike), so they measured the draw more than the
+    // model.
+    const Eigen::MatrixXd contourSkin = dataset::loadShapes(t.dataset, dataset::Role::Contour, "skin");
+    Eigen::MatrixXd heldOut(t.testSkin.rows() + contourSkin.rows(), t.testSkin.cols());
+    heldOut << t.testSkin, contourSkin;
     ObserveOptions o;
     o.region = model::featureRegion(t.dataset.manifest, t.model, "mouth_chin", 10.0);
     const double share = double(o.region.size()) / double(t.model.vertexCount());
-    const ObserveScore s = evaluateObserve(t.model, t.testSkin, o);
-    std::cout << "synthetic low, region mouth_chin (" << 100.0 * share << "% of the vertices): mean " << s.meanError << " mm (max "
-              << s.maxError << "), mean face " << s.meanFaceMeanError << " mm\n";
+    const ObserveScore s = evaluateObserve(t.model, heldOut, o);
+    std::cout << "synthetic low, region mouth_chin (" << 100.0 * share << "% of the vertices), " << heldOut.rows()
+              << " held-out faces: mean " << s.meanError << " mm (max " << s.maxError << "), mean face " << s.meanFaceMeanError << " mm\n";
     CHECK(share > 0.10);
     CHECK(share < 0.20);
     CHECK(s.meanError < 0.5 * s.meanFaceMeanError);
@@ -72,12 +79,12 @@ TEST_CASE("head_model: one feature region of about 15% of the vertices gives und
     // The nose alone (about 5%) and the eyes and brows (about 12%) are reported, not
     // required to reach half.
     o.region = model::featureRegion(t.dataset.manifest, t.model, "eyes_brows", 12.0);
-    const ObserveScore eyes = evaluateObserve(t.model, t.testSkin, o);
+    const ObserveScore eyes = evaluateObserve(t.model, heldOut, o);
     std::cout << "synthetic low, region eyes_brows (" << 100.0 * double(o.region.size()) / double(t.model.vertexCount())
               << "% of the vertices): mean " << eyes.meanError << " mm, mean face " << eyes.meanFaceMeanError << " mm\n";
     CHECK(eyes.meanError < eyes.meanFaceMeanError);
     o.region = model::featureRegion(t.dataset.manifest, t.model, "nose", 10.0);
-    const ObserveScore nose = evaluateObserve(t.model, t.testSkin, o);
+    const ObserveScore nose = evaluateObserve(t.model, heldOut, o);
     std::cout << "synthetic low, region nose (" << 100.0 * double(o.region.size()) / double(t.model.vertexCount())
               << "% of the vertices): mean " << nose.meanError << " mm, mean face " << nose.meanFaceMeanError << " mm\n";
     CHECK(nose.meanError < nose.meanFaceMeanError);

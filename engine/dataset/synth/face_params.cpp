@@ -45,13 +45,13 @@ double normDraw(const Norm& n, bool female, double g, double z)
 // from the midline out (shapeField): the smooth part of the ICT-FaceKit mean face the
 // parameters cannot reach, fitted with the parameter means (sampleFaceParams, "ICT").
 constexpr double kFieldMeans[28] = {
-    0.5, 0.6, -2.4, -2.0,  // forehead
-    3.3, 1.5, 1.8, -0.8,   // brows
-    7.1, -8.8, -3.7, -3.2, // eyes
-    1.3, 2.7, -2.3, 0.2,   // nose, upper cheeks
-    10.0, -2.3, 1.1, -0.2, // mouth, lower cheeks
-    1.3, -2.2, 4.5, 0.3,   // chin, jaw
-    -8.5, 0.1, 0.4, 0.4,   // under the chin
+    0.6, 0.6, -2.2, -2.8,   // forehead
+    3.4, 2.1, 2.0, -0.1,    // brows
+    7.8, -10.9, -1.4, 0.7,  // eyes
+    1.3, 3.1, -2.5, 1.2,    // nose, upper cheeks
+    11.8, -1.8, 1.2, -0.2,  // mouth, lower cheeks
+    2.1, -1.7, 4.8, 0.3,    // chin, jaw
+    -8.1, 0.3, 0.4, 0.6,    // under the chin
 };
 
 } // namespace

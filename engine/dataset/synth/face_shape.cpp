@@ -26,6 +26,14 @@ constexpr double kSupratip = 1.0;              // mm, the supratip break's depth
 // vermilion border on, it fades from kShelfFade of the way to each corner (v13).
 constexpr double kShelfFade = 0.4;
 constexpr double kShelfBlend = 3.0; // mm
+// The brow ridge's crest falls kBrowArch mm 20 mm to either side of the eye's centre, so the
+// ridge follows the orbit's upper rim; and the temple lies back by up to kTemporalHollow mm
+// behind the orbit's lateral rim (bone(), v14). Until v13 the ridge was a horizontal band across
+// the face and the mean shape field dug a 4 mm trough at eye level out to the temples in its
+// place, which drew a horizontal band on the curvature maps from temple to temple; with both the
+// mean field refitted comes 0.04 mm nearer ICT's mean face (docs/realism.md, "v14").
+constexpr double kBrowArch = 8.0;       // mm
+constexpr double kTemporalHollow = 4.0; // mm
 
 // The lower nose (issue 16, docs/realism.md "nostril vestibules"): from prn down, blending into the
 // dorsum over the first kLobuleBlend of the way up to n, the nose's cross-section is wider and
@@ -136,9 +144,11 @@ double bone(const Frame& f, double theta, double phi, double X, double Y, const 
     if (dn < 1)
         r -= kNostrilDimple * f.noseTip * sq(1 - dn);
 
-    // Brow ridge over each orbit, and the glabella between them.
+    // Brow ridge over each orbit, arched along the orbit's upper rim (kBrowArch), and the glabella
+    // between them.
     const double browLateral = smoothstep(4, 14, ax) * (1 - smoothstep(p.exex / 2, p.exex / 2 + 18, ax));
-    r += p.browRidge * std::exp(-sq((Y - (p.browHeight - 5)) / 8)) * browLateral;
+    const double browCrest = p.browHeight - 5 - kBrowArch * sq((ax - f.xEye) / 20);
+    r += p.browRidge * std::exp(-sq((Y - browCrest) / 8)) * browLateral;
     r += 0.35 * p.browRidge * std::exp(-sq(X / 9) - sq((Y - (f.yN + 11)) / 8));
     // Orbital socket: the face sinks around the eyeball so the lids drape over it.
     const double ds = sq((ax - f.xEye) / 21) + sq((Y - 1) / 15);
@@ -149,6 +159,9 @@ double bone(const Frame& f, double theta, double phi, double X, double Y, const 
     // envelope of the base surface (issue 16: its amplitude, place and size were set by the
     // mean-face distance to the ICT-FaceKit mean face, docs/realism.md "Calibration").
     r -= p.paranasalHollow * std::exp(-sq((ax - 25) / 14) - sq((Y + 12) / 21));
+    // Temporal hollow: behind the orbit's lateral rim and above the zygomatic arch the temple lies
+    // back (kTemporalHollow).
+    r -= kTemporalHollow * std::exp(-sq((ax - (p.exex / 2 + 15)) / 10) - sq((Y - 6) / 16));
     r += p.chinHeight * std::exp(-sq(X / p.chinWidth) - sq((Y - f.yPg) / 12));
     // Mentolabial sulcus between the lower lip and the chin.
     r -= (1.5 + 0.3 * p.lowerLipFullness) * std::exp(-sq(X / 17) - sq((Y - lerp(f.ySto - p.lowerVermilion, f.yPg, 0.45)) / 5));
