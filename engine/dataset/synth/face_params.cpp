@@ -43,15 +43,16 @@ double normDraw(const Norm& n, bool female, double g, double z)
 
 // Means (mm) of the 28 symmetric shape fields, row by row from the forehead down, columns 0-3
 // from the midline out (shapeField): the smooth part of the ICT-FaceKit mean face the
-// parameters cannot reach, fitted with the parameter means (sampleFaceParams, "ICT").
+// parameters cannot reach, fitted with the parameter means (sampleFaceParams, "ICT"), and
+// refitted alone in v14 with the arched brow ridge and the temporal hollow (face_shape.cpp).
 constexpr double kFieldMeans[28] = {
-    0.6, 0.6, -2.2, -2.8,   // forehead
-    3.4, 2.1, 2.0, -0.1,    // brows
-    7.8, -10.9, -1.4, 0.7,  // eyes
-    1.3, 3.1, -2.5, 1.2,    // nose, upper cheeks
-    11.8, -1.8, 1.2, -0.2,  // mouth, lower cheeks
-    2.1, -1.7, 4.8, 0.3,    // chin, jaw
-    -8.1, 0.3, 0.4, 0.6,    // under the chin
+    0.6, 0.6, -2.2, -2.8,  // forehead
+    3.4, 2.1, 2.0, -0.1,   // brows
+    7.8, -10.9, -1.4, 0.7, // eyes
+    1.3, 3.1, -2.5, 1.2,   // nose, upper cheeks
+    11.8, -1.8, 1.2, -0.2, // mouth, lower cheeks
+    2.1, -1.7, 4.8, 0.3,   // chin, jaw
+    -8.1, 0.3, 0.4, 0.6,   // under the chin
 };
 
 } // namespace

@@ -29,9 +29,9 @@ constexpr double kShelfBlend = 3.0; // mm
 // The brow ridge's crest falls kBrowArch mm 20 mm to either side of the eye's centre, so the
 // ridge follows the orbit's upper rim; and the temple lies back by up to kTemporalHollow mm
 // behind the orbit's lateral rim (bone(), v14). Until v13 the ridge was a horizontal band across
-// the face and the mean shape field dug a 4 mm trough at eye level out to the temples in its
-// place, which drew a horizontal band on the curvature maps from temple to temple; with both the
-// mean field refitted comes 0.04 mm nearer ICT's mean face (docs/realism.md, "v14").
+// the face and the mean shape field dug a 4 mm trough at eye level out to the temples in place of
+// the hollow, which drew a horizontal band on the curvature maps from temple to temple. With both,
+// and the mean field refitted, the mean face is 0.02 mm nearer ICT's (docs/realism.md, "v14").
 constexpr double kBrowArch = 8.0;       // mm
 constexpr double kTemporalHollow = 4.0; // mm
 
