@@ -15,15 +15,18 @@ evenly the mesh is sampled. Convex (a ridge, the nose's dorsum) is H > 0 and dra
 concave (a valley, the eye's inner corner) is H < 0 and drawn light; grey is flat. The grey
 levels saturate at +-CLIP (1/mm).
 
-The image is an orthographic front view (x right, y up, looking along -z), each triangle
-filled with its corners' values interpolated, nearest surface in front; only triangles whose
-normal has a forward component above 0.2 are drawn (the rest are seen edge-on).
+The image is an orthographic view, each triangle filled with its corners' values interpolated,
+nearest surface in front; only triangles whose normal has a component towards the viewer above
+0.2 are drawn (the rest are seen edge-on). --view names it as `facesketch` does (front,
+profile, 34, or AZ,EL in degrees: the eye at (sin AZ cos EL, sin EL, cos AZ cos EL), y up), so
+e.g. 0,-60 shows a nose's underside; the default is the front view (x right, y up, looking
+along -z).
 
 DATASET is a dataset folder (its `faces/*.ply`, binary little-endian as `facesketch` writes
 them); the image is of the mean of its first N faces (default 1: the first face itself, in
 file-name order), or of one sample with --sample.
 
-usage: tools/curvature-map.py DATASET -o OUT.png [--faces N | --sample NAME] [--clip C] [--size PX]
+usage: tools/curvature-map.py DATASET -o OUT.png [--faces N | --sample NAME] [--view V] [--clip C] [--size PX]
 """
 import argparse, re, struct, sys, zlib
 from pathlib import Path
@@ -91,9 +94,27 @@ def mean_curvature(V, F):
     return H, N
 
 
+def view_rotation(text):
+    """The rotation that turns the view `text` (front, profile, 34 or AZ,EL in degrees, as
+    `facesketch` parses it) into the front view: the eye onto +z, world y up in the image."""
+    named = {"front": (0.0, 0.0), "profile": (90.0, 0.0), "34": (45.0, 0.0)}
+    try:
+        az, el = named[text] if text in named else (float(a) for a in text.split(","))
+    except ValueError:
+        sys.exit(f"view '{text}': expected front, profile, 34 or AZ,EL in degrees with |EL| <= 90")
+    if not (np.isfinite(az) and np.isfinite(el) and abs(el) <= 90):
+        sys.exit(f"view '{text}': expected front, profile, 34 or AZ,EL in degrees with |EL| <= 90")
+    a, e = np.radians(az), np.radians(el)
+    turn = np.array([[np.cos(a), 0, -np.sin(a)], [0, 1, 0], [np.sin(a), 0, np.cos(a)]])  # about y by -AZ
+    tilt = np.array([[1, 0, 0], [0, np.cos(e), -np.sin(e)], [0, np.sin(e), np.cos(e)]])  # about x by EL
+    return tilt @ turn
+
+
 def raster(V, F, values, facing, size):
     """Grey levels (size by size) of `values` over the front view, nearest surface in front."""
     drawn = facing[F].all(1)
+    if not drawn.any():
+        sys.exit("no triangle faces the view")
     x, y = V[:, 0], V[:, 1]
     used = np.unique(F[drawn])
     x0, x1, y0, y1 = x[used].min(), x[used].max(), y[used].min(), y[used].max()
@@ -141,11 +162,13 @@ def main():
     ap.add_argument("-o", "--output", required=True, help="PNG to write")
     ap.add_argument("--faces", type=int, default=1, help="mean of the first N faces (default 1)")
     ap.add_argument("--sample", help="one sample by name (faces/NAME.ply) instead")
+    ap.add_argument("--view", default="front", help="front, profile, 34 or AZ,EL in degrees (default front)")
     ap.add_argument("--clip", type=float, default=0.06, help="|H| (1/mm) drawn black or white (default 0.06)")
     ap.add_argument("--size", type=int, default=600, help="image width and height, pixels (default 600)")
     args = ap.parse_args()
     if args.faces < 1 or args.clip <= 0 or args.size < 32:
         sys.exit("--faces must be >= 1, --clip > 0 and --size >= 32")
+    R = view_rotation(args.view)
     folder = Path(args.dataset) / "faces"
     files = [folder / f"{args.sample}.ply"] if args.sample else sorted(folder.glob("*.ply"))[:args.faces]
     if not files or not files[0].exists():
@@ -161,8 +184,8 @@ def main():
         sys.exit(f"{folder}: a non-finite coordinate")
     H, N = mean_curvature(V, F)
     grey = 128 - 127 * np.clip(H / args.clip, -1, 1)
-    write_png(args.output, raster(V, F, grey, N[:, 2] > 0.2, args.size))
-    print(f"{args.output}: {len(files)} face(s) of {folder}, {len(V)} vertices; H in 1/mm, clipped at +-{args.clip}")
+    write_png(args.output, raster(V @ R.T, F, grey, (N @ R.T)[:, 2] > 0.2, args.size))
+    print(f"{args.output}: {len(files)} face(s) of {folder}, {len(V)} vertices, view {args.view}; H in 1/mm, clipped at +-{args.clip}")
 
 
 if __name__ == "__main__":

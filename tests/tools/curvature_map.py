@@ -88,4 +88,35 @@ rows = np.frombuffer(zlib.decompress(idat), dtype=np.uint8).reshape(64, 65)[:, 1
 check(abs(int(rows[32, 32]) - 64) <= 1, f"the sphere's centre is drawn at H / clip (grey {rows[32, 32]}, expected 64)")
 check(rows[0, 0] == 128, "the background is grey 128")
 
+# Views as `facesketch` names them: the eye goes onto +z, world y stays up in the image.
+for view, eye in (("profile", (1, 0, 0)), ("34", (0.5 ** 0.5, 0, 0.5 ** 0.5)), ("0,-60", (0, -(0.75 ** 0.5), 0.5)), ("front", (0, 0, 1))):
+    R = tool.view_rotation(view)
+    check(np.allclose(R @ np.array(eye), (0, 0, 1)) and (R @ np.array((0, 1, 0)))[1] > 0, f"view {view}: the eye onto +z, y up")
+for bad in ("sideways", "1,2,3", "0,95", "nan,0", ""):
+    try:
+        tool.view_rotation(bad)
+        check(False, f"view '{bad}' refused")
+    except SystemExit as e:
+        check("expected front, profile, 34 or AZ,EL" in str(e), f"view '{bad}' refused with a message naming the forms")
+
+# A sphere looks the same from every side: its centre keeps H / clip from the profile too.
+sys.argv = ["curvature-map.py", str(work / "spheres"), "-o", str(out), "--faces", "2", "--size", "64", "--clip", "0.05", "--view", "profile"]
+tool.main()
+data = out.read_bytes()
+idat = data[data.index(b"IDAT") + 4:data.index(b"IEND") - 8]
+rows = np.frombuffer(zlib.decompress(idat), dtype=np.uint8).reshape(64, 65)[:, 1:]
+check(abs(int(rows[32, 32]) - 64) <= 1, f"from the profile the sphere's centre is drawn at H / clip (grey {rows[32, 32]})")
+
+# A plane facing +z has no triangle facing the profile view: a clear error, no image.
+plane = work / "plane" / "faces"
+plane.mkdir(parents=True, exist_ok=True)
+write_ply(plane / "p.ply", P, T)
+side = work / "plane-side.png"
+sys.argv = ["curvature-map.py", str(work / "plane"), "-o", str(side), "--view", "profile"]
+try:
+    tool.main()
+    check(False, "a plane seen edge-on is refused")
+except SystemExit as e:
+    check("no triangle faces the view" in str(e) and not side.exists(), "a plane seen edge-on is refused, no image written")
+
 sys.exit(1 if failures else 0)
