@@ -101,7 +101,7 @@ def view_rotation(text):
     try:
         az, el = named[text] if text in named else (float(a) for a in text.split(","))
     except ValueError:
-        sys.exit(f"view '{text}': expected front, profile, 34 or AZ,EL in degrees with |EL| <= 90")
+        az, el = np.nan, 0.0
     if not (np.isfinite(az) and np.isfinite(el) and abs(el) <= 90):
         sys.exit(f"view '{text}': expected front, profile, 34 or AZ,EL in degrees with |EL| <= 90")
     a, e = np.radians(az), np.radians(el)

@@ -44,6 +44,12 @@ def icosphere(radius, levels):
     return radius * np.array(V), np.array(F, dtype=np.int32)
 
 
+def grey_rows(png, size):
+    """The grey levels of the tool's size-by-size 8-bit PNG (one IDAT chunk, filter byte 0)."""
+    idat = png[png.index(b"IDAT") + 4:png.index(b"IEND") - 8]
+    return np.frombuffer(zlib.decompress(idat), dtype=np.uint8).reshape(size, size + 1)[:, 1:]
+
+
 def write_ply(path, V, F):
     header = (f"ply\nformat binary_little_endian 1.0\nelement vertex {len(V)}\nproperty float x\nproperty float y\n"
               f"property float z\nelement face {len(F)}\nproperty list uchar int vertex_indices\nend_header\n")
@@ -82,8 +88,7 @@ data = out.read_bytes()
 check(data[:8] == b"\x89PNG\r\n\x1a\n", "writes a PNG")
 w, h, depth, colour = struct.unpack(">IIBB", data[16:26])
 check((w, h, depth, colour) == (64, 64, 8, 0), f"64 by 64, 8-bit grey (found {w} by {h}, {depth} bits, colour type {colour})")
-idat = data[data.index(b"IDAT") + 4:data.index(b"IEND") - 8]
-rows = np.frombuffer(zlib.decompress(idat), dtype=np.uint8).reshape(64, 65)[:, 1:]
+rows = grey_rows(data, 64)
 # H = 1/40 over a clip of 0.05: 128 - 127 * 0.5 = 64.5 at the centre; the background stays 128.
 check(abs(int(rows[32, 32]) - 64) <= 1, f"the sphere's centre is drawn at H / clip (grey {rows[32, 32]}, expected 64)")
 check(rows[0, 0] == 128, "the background is grey 128")
@@ -102,9 +107,7 @@ for bad in ("sideways", "1,2,3", "0,95", "nan,0", ""):
 # A sphere looks the same from every side: its centre keeps H / clip from the profile too.
 sys.argv = ["curvature-map.py", str(work / "spheres"), "-o", str(out), "--faces", "2", "--size", "64", "--clip", "0.05", "--view", "profile"]
 tool.main()
-data = out.read_bytes()
-idat = data[data.index(b"IDAT") + 4:data.index(b"IEND") - 8]
-rows = np.frombuffer(zlib.decompress(idat), dtype=np.uint8).reshape(64, 65)[:, 1:]
+rows = grey_rows(out.read_bytes(), 64)
 check(abs(int(rows[32, 32]) - 64) <= 1, f"from the profile the sphere's centre is drawn at H / clip (grey {rows[32, 32]})")
 
 # A plane facing +z has no triangle facing the profile view: a clear error, no image.
