@@ -52,18 +52,19 @@ void printRecords(const std::vector<evaluation::StrokeEvalRecord>& records)
 {
     std::cout << std::fixed << std::left << std::setw(9) << "view" << std::setw(11) << "mapper" << std::right << std::setw(7) << "faces"
               << std::setw(9) << "strokes" << std::setw(8) << "unread" << std::setw(10) << "observed" << std::setw(10) << "mean mm"
-              << std::setw(14) << "mean face mm" << std::setw(8) << "ratio" << std::setw(10) << "read ms" << std::setw(10) << "apply ms"
-              << std::setw(10) << "plane mm" << std::setw(10) << "depth mm" << std::setw(10) << "across mm" << std::setw(8) << "<=1mm"
-              << std::setw(8) << "<=3mm" << std::setw(9) << "misread"
+              << std::setw(14) << "mean face mm" << std::setw(8) << "ratio" << std::setw(13) << "95% interval" << std::setw(10) << "read ms"
+              << std::setw(10) << "apply ms" << std::setw(10) << "plane mm" << std::setw(10) << "depth mm" << std::setw(10) << "across mm"
+              << std::setw(8) << "<=1mm" << std::setw(8) << "<=3mm" << std::setw(9) << "misread"
               << "\n";
     for (const auto& r : records)
         std::cout << std::left << std::setw(9) << r.view << std::setw(11) << r.mapper << std::right << std::setw(7) << r.faces
                   << std::setw(9) << r.strokes << std::setw(8) << r.unread + r.failed << std::setw(10) << std::setprecision(0)
                   << r.observedVertices << std::setprecision(2) << std::setw(10) << r.meanMm << std::setw(14) << r.meanFaceMm
-                  << std::setprecision(3) << std::setw(8) << r.ratio << std::setprecision(1) << std::setw(10) << r.readMs << std::setw(10)
-                  << r.applyMs << std::setprecision(2) << std::setw(10) << r.planeMm << std::setw(10) << r.depthMm << std::setw(10)
-                  << r.acrossMm << std::setw(8) << r.within1Mm << std::setw(8) << r.within3Mm << std::setprecision(3) << std::setw(9)
-                  << r.misread << "\n";
+                  << std::setprecision(3) << std::setw(8) << r.ratio << std::setw(7) << r.ratioInterval.low << "-" << std::left
+                  << std::setw(5) << r.ratioInterval.high << std::right << std::setprecision(1) << std::setw(10) << r.readMs
+                  << std::setw(10) << r.applyMs << std::setprecision(2) << std::setw(10) << r.planeMm << std::setw(10) << r.depthMm
+                  << std::setw(10) << r.acrossMm << std::setw(8) << r.within1Mm << std::setw(8) << r.within3Mm << std::setprecision(3)
+                  << std::setw(9) << r.misread << "\n";
 }
 
 void runEvalStrokes(const EvalStrokesCommand& c)
@@ -133,12 +134,12 @@ void runEvalStrokes(const EvalStrokesCommand& c)
     if (!c.json.empty()) {
         nlohmann::json records = nlohmann::json::array();
         for (const auto& r : result.records)
-            records.push_back(
-                { { "view", r.view }, { "mapper", r.mapper }, { "noise_px", r.noisePx }, { "faces", r.faces }, { "mean_mm", r.meanMm },
-                    { "ratio", r.ratio }, { "extreme", r.extreme }, { "mean_face_mm", r.meanFaceMm }, { "strokes", r.strokes },
-                    { "unread", r.unread }, { "failed", r.failed }, { "observed_vertices", r.observedVertices }, { "read_ms", r.readMs },
-                    { "apply_ms", r.applyMs }, { "plane_mm", r.planeMm }, { "depth_mm", r.depthMm }, { "across_mm", r.acrossMm },
-                    { "within_1mm", r.within1Mm }, { "within_3mm", r.within3Mm }, { "misread_strokes", r.misread } });
+            records.push_back({ { "view", r.view }, { "mapper", r.mapper }, { "noise_px", r.noisePx }, { "faces", r.faces },
+                { "mean_mm", r.meanMm }, { "ratio", r.ratio }, { "ratio_low", r.ratioInterval.low }, { "ratio_high", r.ratioInterval.high },
+                { "extreme", r.extreme }, { "mean_face_mm", r.meanFaceMm }, { "strokes", r.strokes }, { "unread", r.unread },
+                { "failed", r.failed }, { "observed_vertices", r.observedVertices }, { "read_ms", r.readMs }, { "apply_ms", r.applyMs },
+                { "plane_mm", r.planeMm }, { "depth_mm", r.depthMm }, { "across_mm", r.acrossMm }, { "within_1mm", r.within1Mm },
+                { "within_3mm", r.within3Mm }, { "misread_strokes", r.misread } });
         const nlohmann::json doc { { "model", c.model }, { "dataset", c.dataset }, { "vertices", m.vertexCount() },
             { "image_size", c.size }, { "seed", c.seed }, { "correlation", !c.noCorrelation }, { "supersede_radius_mm", c.supersedeRadius },
             { "plane_noise_mm", c.planeNoise }, { "depth_noise_mm", c.depthNoise }, { "robust_passes", c.robustPasses },
@@ -177,8 +178,9 @@ void addEvalStrokesCommand(CLI::App& eval)
     cmd->footer("For every `test` face of DATASET: simulated strokes of its own contours and silhouette (as `facesketch strokes\n"
                 "simulate`) are read by each mapper and applied to the tracking model from the mean face, from each view\n"
                 "alone and from all views together (view \"all\"). Prints the mean per-vertex error in mm and its ratio to\n"
-                "the mean face's error; --json writes one record per (view, mapper): {\"view\", \"mapper\", \"noise_px\", \"faces\",\n"
-                "\"mean_mm\", \"ratio\", ...} under \"results\".");
+                "the mean face's error, with the ratio's 95% interval over the draw of the faces (a bootstrap); --json\n"
+                "writes one record per (view, mapper): {\"view\", \"mapper\", \"noise_px\", \"faces\", \"mean_mm\", \"ratio\",\n"
+                "\"ratio_low\", \"ratio_high\", ...} under \"results\".");
     cmd->add_option("model", c->model, "Model file from `facesketch train`")->required();
     cmd->add_option("dataset", c->dataset, "The dataset it was trained on (its test faces are sketched)")->required();
     cmd->add_option("--views", c->views, "Views separated by ',' or ';': front, profile, 34 or AZ,EL")->capture_default_str();

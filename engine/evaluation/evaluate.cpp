@@ -27,6 +27,7 @@ ObserveScore evaluateObserve(const FaceModel& model, const Eigen::MatrixXd& face
     ObserveScore score;
     double reconstructionMs = 0.0;
     Eigen::Index measured = 0;
+    std::vector<double> faceErrors, meanFaceErrors;
     for (Eigen::Index f = 0; f < faces.rows(); ++f) {
         const Eigen::VectorXd truth = faces.row(f).transpose();
         Observations obs;
@@ -42,14 +43,19 @@ ObserveScore evaluateObserve(const FaceModel& model, const Eigen::MatrixXd& face
         Stopwatch watch;
         const Eigen::VectorXd face = reconstruct(model, obs, options.reconstruct).face;
         reconstructionMs += watch.milliseconds();
+        double faceError = 0, meanFaceError = 0;
         for (Eigen::Index v = 0; v < vertices; ++v) {
             const double e = (face.segment<3>(3 * v) - truth.segment<3>(3 * v)).norm();
             const double m = (model.meanFace.segment<3>(3 * v) - truth.segment<3>(3 * v)).norm();
-            score.meanError += e;
-            score.meanFaceMeanError += m;
+            faceError += e;
+            meanFaceError += m;
             score.maxError = std::max(score.maxError, e);
             score.meanFaceMaxError = std::max(score.meanFaceMaxError, m);
         }
+        score.meanError += faceError;
+        score.meanFaceMeanError += meanFaceError;
+        faceErrors.push_back(faceError);
+        meanFaceErrors.push_back(meanFaceError);
     }
     score.faces = static_cast<int>(faces.rows());
     if (score.faces > 0) {
@@ -58,6 +64,8 @@ ObserveScore evaluateObserve(const FaceModel& model, const Eigen::MatrixXd& face
         score.meanFaceMeanError /= count;
         score.measuredFraction = static_cast<double>(measured) / count;
         score.millisecondsPerFace = reconstructionMs / score.faces;
+        if (score.meanFaceMeanError > 0)
+            score.ratioInterval = bootstrapRatio(faceErrors, meanFaceErrors);
     }
     return score;
 }

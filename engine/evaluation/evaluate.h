@@ -3,6 +3,7 @@
 // face from some of its own vertices and compare with the whole face, beside the error of
 // the mean face.
 
+#include "evaluation/interval.h"
 #include "stats/conditional.h"
 #include "stats/face_model.h"
 
@@ -35,6 +36,10 @@ struct ObserveScore {
     double measuredFraction = 0.0;
     /// Mean reconstruction time per face, ms.
     double millisecondsPerFace = 0.0;
+    /// The 95% interval of meanError / meanFaceMeanError over the draw of the faces
+    /// (evaluation/interval.h; every face has as many vertices, so the ratio of the means is
+    /// the ratio of the per-face sums).
+    Interval ratioInterval;
 };
 
 /// @param[in] faces  m by 3#V held-out faces, one per row, on the model's topology (mm)

@@ -32,6 +32,7 @@ struct Sums {
     double planeMm = 0, depthMm = 0, within1 = 0, within3 = 0, acrossMm = 0;
     long observations = 0, across = 0;
     int acrossStrokes = 0, misread = 0;
+    std::vector<double> faceMeans, meanFaceMeans; ///< per face, for the ratio's interval
 };
 
 Eigen::Vector3d axisOf(const Eigen::Matrix<double, 2, 3>& P)
@@ -183,6 +184,8 @@ StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data
                 const Eigen::VectorXd e = vertexErrors(tracking.face(), traced);
                 s.mean += e.mean();
                 s.meanFace += meanFaceError;
+                s.faceMeans.push_back(e.mean());
+                s.meanFaceMeans.push_back(meanFaceError);
                 s.observed += tracking.observedVertices();
                 ++s.faces;
                 if (static_cast<int>(f) < options.keepFaces)
@@ -211,6 +214,8 @@ StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data
             r.meanMm = s.mean / s.faces;
             r.meanFaceMm = s.meanFace / s.faces;
             r.ratio = r.meanMm / r.meanFaceMm;
+            if (s.faces > 0)
+                r.ratioInterval = bootstrapRatio(s.faceMeans, s.meanFaceMeans);
             r.strokes = s.strokes;
             r.unread = s.unread;
             r.failed = s.failed;

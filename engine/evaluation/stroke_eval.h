@@ -9,6 +9,7 @@
 // With `extreme` F != 1 the strokes trace mean + F (face - mean) and that caricature is the
 // face scored against (it is what the strokes depict; the mean face's error grows with it).
 
+#include "evaluation/interval.h"
 #include "gpu/device.h"
 #include "sketch/mapper.h"
 #include "sketch/simulate.h"
@@ -74,9 +75,12 @@ struct StrokeEvalRecord {
     std::string view, mapper;
     double noisePx = 0, extreme = 1;
     int faces = 0;
-    double meanMm = 0;              ///< mean over faces of the mean per-vertex error
-    double meanFaceMm = 0;          ///< the same for the mean face
-    double ratio = 0;               ///< meanMm / meanFaceMm
+    double meanMm = 0;     ///< mean over faces of the mean per-vertex error
+    double meanFaceMm = 0; ///< the same for the mean face
+    double ratio = 0;      ///< meanMm / meanFaceMm
+    /// Its 95% interval over the draw of the faces (evaluation/interval.h): the faces are few,
+    /// and a bar counts as met only when the whole interval is under it.
+    Interval ratioInterval;
     int strokes = 0;                ///< strokes drawn, over all faces
     int unread = 0;                 ///< strokes the reader pinned nothing with (or refused, counted in failed)
     int failed = 0;                 ///< strokes the reader threw on

@@ -51,16 +51,22 @@ TEST_CASE("evaluate: region scores match a direct recomputation")
     const ObserveScore score = evaluateObserve(s.model, s.test, options);
 
     double mean = 0.0, worst = 0.0, meanFace = 0.0;
+    std::vector<double> faceErrors, meanFaceErrors; // per face: the interval's unit
     for (Eigen::Index f = 0; f < s.test.rows(); ++f) {
+        faceErrors.push_back(0.0);
+        meanFaceErrors.push_back(0.0);
         Observations obs;
         for (int v : options.region)
             obs.addVertex(v, s.test.row(f).segment<3>(3 * v).transpose());
         const Eigen::VectorXd face = reconstruct(s.model, obs).face;
         for (int v = 0; v < kSide * kSide; ++v) {
             const double e = (face.segment<3>(3 * v) - s.test.row(f).segment<3>(3 * v).transpose()).norm();
+            const double m = (s.model.meanFace.segment<3>(3 * v) - s.test.row(f).segment<3>(3 * v).transpose()).norm();
             mean += e;
             worst = std::max(worst, e);
-            meanFace += (s.model.meanFace.segment<3>(3 * v) - s.test.row(f).segment<3>(3 * v).transpose()).norm();
+            meanFace += m;
+            faceErrors.back() += e;
+            meanFaceErrors.back() += m;
         }
     }
     const double count = double(s.test.rows()) * kSide * kSide;
@@ -70,6 +76,12 @@ TEST_CASE("evaluate: region scores match a direct recomputation")
     CHECK(std::abs(score.meanFaceMeanError - meanFace / count) < 1e-12);
     CHECK(std::abs(score.measuredFraction - double(options.region.size()) / (kSide * kSide)) < 1e-12);
     CHECK(score.meanError < score.meanFaceMeanError);
+    // The ratio's interval is the bootstrap over faces (not vertices), and holds the ratio.
+    const Interval expected = bootstrapRatio(faceErrors, meanFaceErrors);
+    CHECK(score.ratioInterval.low == expected.low);
+    CHECK(score.ratioInterval.high == expected.high);
+    CHECK(score.ratioInterval.low < score.meanError / score.meanFaceMeanError);
+    CHECK(score.meanError / score.meanFaceMeanError < score.ratioInterval.high);
 }
 
 TEST_CASE("evaluate: a fully measured face comes back exactly without clean-up")

@@ -53,6 +53,9 @@ TEST_CASE("stroke_eval: sketching test faces with their own strokes beats the me
         REQUIRE(rec.strokes > 3 * 3);
         REQUIRE(rec.ratio == Approx(rec.meanMm / rec.meanFaceMm));
         REQUIRE(rec.ratio < 1.0);
+        // Three faces read differently well: an interval of some width round the ratio.
+        REQUIRE(rec.ratioInterval.low < rec.ratio);
+        REQUIRE(rec.ratio < rec.ratioInterval.high);
     }
     REQUIRE(r.records[2].ratio < std::min(r.records[0].ratio, r.records[1].ratio));
     REQUIRE(r.records[2].strokes == r.records[0].strokes + r.records[1].strokes);
