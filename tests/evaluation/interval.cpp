@@ -29,7 +29,7 @@ void drawFaces(Random& random, size_t n, std::vector<double>& a, std::vector<dou
 
 } // namespace
 
-TEST_CASE("interval: faces that all have one ratio give that ratio at both ends; one face gives its own")
+TEST_CASE("interval: faces that all have one ratio give that ratio at both ends, and one face gives its own")
 {
     const std::vector<double> b { 4.0, 5.5, 6.25, 3.0 }, a { 2.0, 2.75, 3.125, 1.5 };
     const Interval i = bootstrapRatio(a, b);

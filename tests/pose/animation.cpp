@@ -32,8 +32,10 @@ TEST_CASE("pose animation: the exported glb shows at each frame time the frame t
     TimelinePlayer player(w.model, timeline, w.neutral);
     for (std::size_t k = 0; k < times.size(); ++k)
         REQUIRE(animation.frames[k] == player.frame(times[k]));
-    // The last frame is the smile keyframe's face, away from the rest face (the check above is not vacuous).
-    REQUIRE(test::meanError(animation.frames.back(), w.neutral.V) > 0.5);
+    // The last frame is the smile keyframe's face, away from the rest face (the check above is
+    // not vacuous): 0.44 mm on average over the face from one lip stroke (v15's fixture; over
+    // 0.5 before), where the frames' equality is exact.
+    REQUIRE(test::meanError(animation.frames.back(), w.neutral.V) > 0.2);
 
     test::TempDir dir;
     writeGlb(dir / "a.glb", animation);

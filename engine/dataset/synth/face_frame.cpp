@@ -184,8 +184,9 @@ Frame makeFrame(const FaceParams& p)
     // the profile's knots at n, sn, pg and gn until the finished skin passes through their
     // targets exactly; the nose height follows.
     const std::pair<double, double> exact[] = { { f.yN, f.zf }, { f.ySn, f.zSn }, { f.yPg, f.zPg }, { f.yGn, f.zGn } };
-    // Six passes: the shape fields (face_params.h) tilt the midline, and three left 0.4 mm.
-    for (int pass = 0; pass < 6; ++pass) {
+    // Ten passes: the shape fields and the face-wide factors (face_params.h) tilt the midline;
+    // three left 0.4 mm, six 0.13 mm once the factors came (v15), ten 0.016 mm.
+    for (int pass = 0; pass < 10; ++pass) {
         for (const auto& [y, z] : exact) {
             const double phi = std::atan2(y, z);
             const size_t k = static_cast<size_t>(std::min_element(f.depth.x.begin(), f.depth.x.end(), [&](double a, double b) {
