@@ -25,6 +25,21 @@ nlohmann::json spectrumJson(const evaluation::Spectrum& s)
         { "modes_95", s.modes95 }, { "modes_99", s.modes99 }, { "variances", s.variances } };
 }
 
+nlohmann::json asymmetryJson(const evaluation::Asymmetry& a)
+{
+    return { { "measured", a.measured }, { "share", a.share }, { "paired_vertices", a.pairedVertices }, { "message", a.message } };
+}
+
+void printAsymmetry(const char* label, const evaluation::Asymmetry& a)
+{
+    std::cout << std::left << std::setw(20) << label << std::right;
+    if (a.measured)
+        std::cout << std::setw(8) << std::setprecision(4) << a.share << "  (" << a.pairedVertices << " paired vertices)\n"
+                  << std::setprecision(2);
+    else
+        std::cout << "  not measured: " << a.message << "\n";
+}
+
 void printSpectrum(const char* label, const evaluation::Spectrum& s)
 {
     std::cout << std::left << std::setw(20) << label << std::right << std::setw(8) << s.modes90 << std::setw(8) << s.modes95 << std::setw(8)
@@ -69,6 +84,9 @@ void runEvalRealism(const EvalRealismCommand& c)
     printSpectrum("reference central", r.referenceCentral);
     printSpectrum("data skin", r.dataSkin);
     printSpectrum("reference skin", r.referenceSkin);
+    std::cout << "antisymmetric share of the variation, central region\n";
+    printAsymmetry("data", r.dataAsymmetry);
+    printAsymmetry("reference", r.referenceAsymmetry);
 
     if (!c.json.empty()) {
         nlohmann::json distances = nlohmann::json::array();
@@ -85,7 +103,8 @@ void runEvalRealism(const EvalRealismCommand& c)
                         { { "area_mm2", r.open.area }, { "rms_mm", r.open.rms }, { "p95_mm", r.open.p95 }, { "max_mm", r.open.max } } } } },
             { "spectrum",
                 { { "data_central", spectrumJson(r.dataCentral) }, { "reference_central", spectrumJson(r.referenceCentral) },
-                    { "data_skin", spectrumJson(r.dataSkin) }, { "reference_skin", spectrumJson(r.referenceSkin) } } } };
+                    { "data_skin", spectrumJson(r.dataSkin) }, { "reference_skin", spectrumJson(r.referenceSkin) } } },
+            { "asymmetry", { { "data", asymmetryJson(r.dataAsymmetry) }, { "reference", asymmetryJson(r.referenceAsymmetry) } } } };
         writeFileAtomically(c.json, [&](std::ostream& out) { out << doc.dump(1) << "\n"; });
         std::cout << "wrote " << c.json << "\n";
     }
@@ -100,8 +119,9 @@ void addEvalRealismCommand(CLI::App& eval)
     cmd->footer("Aligns DATASET's mean face onto REF's by a similarity on their shared landmarks and prints the nearest-surface\n"
                 "distance between the two mean faces over the central face region (both directions, area-weighted RMS, 95th\n"
                 "percentile, max; also per region: eyes, brows, nose, mouth, chin), and for each set the number of PCA modes\n"
-                "holding 90, 95 and 99% of the shape variance (central region area-weighted, and the whole skin). Every sample\n"
-                "of both datasets is used. --json writes the same figures and each spectrum (docs/realism.md).");
+                "holding 90, 95 and 99% of the shape variance (central region area-weighted, and the whole skin) and the\n"
+                "antisymmetric share of that variance over the central region. Every sample of both datasets is used. --json writes the "
+                "same figures and each spectrum (docs/realism.md).");
     cmd->add_option("dataset", c->dataset, "Dataset folder to measure (e.g. facesketch synth)")->required();
     cmd->add_option("--reference", c->reference, "Reference dataset folder (e.g. an ICT import)")->required();
     cmd->add_option("--radius", c->radius, "Central region: within this many mm of the shared landmarks")

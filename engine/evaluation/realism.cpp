@@ -230,6 +230,84 @@ Eigen::VectorXd vertexAreas(const Vertices& V, const Triangles& F)
     return area;
 }
 
+Asymmetry antisymmetricShare(const FaceSet& set, const Eigen::VectorXd& weights)
+{
+    const Eigen::Index nv = set.shapes.cols() / 3;
+    if (weights.size() != nv)
+        fail(set.name, ": antisymmetric share: ", weights.size(), " weights for ", nv, " vertices");
+    if (!(weights.array() >= 0).all())
+        fail(set.name, ": antisymmetric share: a weight is negative or NaN (", weights.minCoeff(), ")");
+    const Vertices mean = meanFace(set);
+
+    // The mirror plane n . x = c: n the mean direction from each "NAME_r" to its "NAME_l", c the
+    // median of their midpoints along n (as sketch/symmetry.h); without pairs, x = mean x.
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> pairs;
+    for (const auto& [name, right] : set.landmarks)
+        if (name.size() > 2 && name.compare(name.size() - 2, 2, "_r") == 0) {
+            const auto left = set.landmarks.find(name.substr(0, name.size() - 2) + "_l");
+            if (left != set.landmarks.end()) {
+                pairs.push_back({ mean.row(right).transpose(), mean.row(left->second).transpose() });
+                n += (pairs.back().second - pairs.back().first).normalized();
+            }
+        }
+    double c = 0;
+    if (pairs.empty() || n.norm() < 1e-9) {
+        n = Eigen::Vector3d::UnitX();
+        c = mean.col(0).mean();
+    } else {
+        n.normalize();
+        std::vector<double> middles;
+        for (const auto& [r, l] : pairs)
+            middles.push_back(n.dot(0.5 * (r + l)));
+        std::nth_element(middles.begin(), middles.begin() + static_cast<std::ptrdiff_t>(middles.size() / 2), middles.end());
+        c = middles[middles.size() / 2];
+    }
+    const Eigen::Matrix3d R = Eigen::Matrix3d::Identity() - 2 * n * n.transpose();
+
+    // Each weighted vertex's partner: the vertex nearest its mirror image, if within the
+    // vertex's mean edge length (an exactly symmetric topology pairs each vertex with its
+    // mirror vertex; ICT-FaceKit's, which is not, with its nearest neighbour there).
+    Eigen::VectorXd edgeSum = Eigen::VectorXd::Zero(nv), edgeCount = Eigen::VectorXd::Zero(nv);
+    for (Eigen::Index f = 0; f < set.triangles.rows(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int a = set.triangles(f, k), b = set.triangles(f, (k + 1) % 3);
+            const double e = (mean.row(a) - mean.row(b)).norm();
+            edgeSum(a) += e, edgeCount(a) += 1, edgeSum(b) += e, edgeCount(b) += 1;
+        }
+    Asymmetry a;
+    int weighted = 0;
+    double antisymmetric = 0, total = 0;
+    for (Eigen::Index v = 0; v < nv; ++v) {
+        if (weights(v) <= 0)
+            continue;
+        ++weighted;
+        const Eigen::Vector3d image = R * mean.row(v).transpose() + 2 * c * n;
+        Eigen::Index partner = 0;
+        const double miss = std::sqrt((mean.rowwise() - image.transpose()).rowwise().squaredNorm().minCoeff(&partner));
+        if (edgeCount(v) == 0 || miss > edgeSum(v) / edgeCount(v))
+            continue;
+        ++a.pairedVertices;
+        for (Eigen::Index f = 0; f < set.shapes.rows(); ++f) {
+            const Eigen::Vector3d d = set.shapes.row(f).segment<3>(3 * v).transpose() - mean.row(v).transpose();
+            const Eigen::Vector3d dp = set.shapes.row(f).segment<3>(3 * partner).transpose() - mean.row(partner).transpose();
+            antisymmetric += weights(v) * (0.5 * (d - R * dp)).squaredNorm();
+            total += weights(v) * d.squaredNorm();
+        }
+    }
+    if (weighted == 0)
+        fail(set.name, ": antisymmetric share: no vertex has a positive weight");
+    if (2 * a.pairedVertices < weighted) {
+        a.message = cat(set.name, ": only ", a.pairedVertices, " of ", weighted,
+            " weighted vertices have a vertex within their mean edge length of their mirror image");
+        a.pairedVertices = 0;
+        return a;
+    }
+    a.measured = true;
+    a.share = total > 0 ? antisymmetric / total : 0.0;
+    return a;
+}
+
 Spectrum shapeSpectrum(const Eigen::MatrixXd& shapes, const Eigen::VectorXd& weights)
 {
     if (shapes.rows() < 2)
@@ -340,6 +418,15 @@ RealismReport evaluateRealism(const FaceSet& data, const FaceSet& reference, con
     report.referenceSkin = shapeSpectrum(reference.shapes);
     report.dataCentral = centralSpectrum(data, dataOwner);
     report.referenceCentral = centralSpectrum(reference, refOwner);
+    const auto centralAreas = [](const FaceSet& set, const std::vector<int>& owner) {
+        Eigen::VectorXd w = vertexAreas(meanFace(set), set.triangles);
+        for (size_t v = 0; v < owner.size(); ++v)
+            if (owner[v] < 0)
+                w(static_cast<Eigen::Index>(v)) = 0;
+        return w;
+    };
+    report.dataAsymmetry = antisymmetricShare(data, centralAreas(data, dataOwner));
+    report.referenceAsymmetry = antisymmetricShare(reference, centralAreas(reference, refOwner));
     return report;
 }
 

@@ -45,6 +45,19 @@
 // by the square root of its area so the inner product of two faces approximates the surface
 // integral and the count does not depend on the mesh's resolution.
 //
+// Asymmetry. The share of a set's shape variation that is antisymmetric, over its central
+// region: each face's offset from the set's mean, d_v = x_v - mean_v, splits into a symmetric
+// and an antisymmetric part through the mean face's mirror plane (fitted to its "_l" / "_r"
+// landmark pairs as sketch/symmetry.h does, R the reflection): a_v = (d_v - R d_p) / 2, p the
+// vertex nearest v's mirror image. The share is the sum over faces and central vertices of
+// w_v |a_v|^2 over the same sum of w_v |d_v|^2, w_v the vertex's area, so it does not depend on
+// the resolution. The partner is the nearest vertex, not sketch/symmetry.h's verified
+// involution, because ICT-FaceKit's topology is not mirror-symmetric vertex for vertex (that
+// map is refused there); a vertex whose mirror image has no vertex within its mean edge length
+// is left out. Real faces are nearly but not quite symmetric (ICT-FaceKit 1.6%; docs/realism.md,
+// "Now (4 December, v15)"). A set where fewer than half the central vertices find a partner is
+// reported as not measured, with the reason, and the other figures stand.
+//
 // Units: everything in mm (a manifest in cm or m is scaled on loading).
 
 #include "core/mesh.h"
@@ -93,6 +106,14 @@ struct Spectrum {
     int modes90 = 0, modes95 = 0, modes99 = 0;
 };
 
+/// The antisymmetric share of one set's variation (above).
+struct Asymmetry {
+    bool measured = false; ///< false when the set's mirror map could not be found (message says why)
+    std::string message;
+    double share = 0.0;     ///< in [0, 1]
+    int pairedVertices = 0; ///< vertices of positive weight with a partner at their mirror image (the rest are left out)
+};
+
 struct RealismReport {
     std::vector<std::string> landmarks;         ///< the shared central landmarks the alignment used
     double alignmentScale = 1.0;                ///< the similarity's scale, data to reference
@@ -105,6 +126,7 @@ struct RealismReport {
     double referenceEnclosed = 0.0;             ///< and of the reference's
     SurfaceDistance open;                       ///< "open": as "all" without the enclosed vertices of either set
     Spectrum dataSkin, dataCentral, referenceSkin, referenceCentral;
+    Asymmetry dataAsymmetry, referenceAsymmetry; ///< over each set's central region
 };
 
 /// The measures above, `data` against `reference`. Throws Error naming both sets if they share
@@ -118,6 +140,13 @@ RealismReport evaluateRealism(const FaceSet& data, const FaceSet& reference, con
 /// count is the smallest k whose leading variances sum to at least that fraction of the total.
 /// Throws Error for fewer than 2 samples or a weight count other than #V.
 Spectrum shapeSpectrum(const Eigen::MatrixXd& shapes, const Eigen::VectorXd& weights = {});
+
+/// The antisymmetric share of `set`'s variation (above), each vertex weighted by `weights` (#V
+/// non-negative values; 0 leaves a vertex out). Throws Error for a weight count other than #V,
+/// a negative or NaN weight, or no positive weight; fewer than half the weighted vertices
+/// paired is not an error but Asymmetry::measured false. A set whose faces do not vary has
+/// share 0. Cost O(#weighted x #V) distance tests.
+Asymmetry antisymmetricShare(const FaceSet& set, const Eigen::VectorXd& weights);
 
 /// Which of `vertices` (indices into mesh.V) are enclosed: the segment from the vertex, along
 /// its outward unit normal (geometry/normals.h; counter-clockwise triangles seen from outside),

@@ -248,6 +248,100 @@ TEST_CASE("shape spectrum: a set with a known spectrum gives known mode counts")
     REQUIRE(h.totalVariance == Approx(cut.totalVariance).epsilon(1e-9));
 }
 
+namespace {
+
+// 40 faces on the symmetric grid of bumpySet, each the sum of a symmetric bump of height a_s and
+// an antisymmetric pair of bumps (up on one side, down on the other) of height k b_s, the
+// draws a_s and b_s independent across faces.
+FaceSet mirrorSet(double k)
+{
+    const Mesh grid = makeGrid(21, 25, 100, 120);
+    FaceSet set;
+    set.name = "mirror";
+    set.triangles = grid.F;
+    set.landmarks = bumpySet(1).landmarks;
+    Random random(17);
+    set.shapes.resize(40, 3 * grid.V.rows());
+    for (int s = 0; s < 40; ++s) {
+        const double a = 20 + 3 * random.normal(), b = random.normal();
+        Vertices V = grid.V;
+        for (Eigen::Index v = 0; v < V.rows(); ++v) {
+            const double x = V(v, 0), y = V(v, 1);
+            const double side = std::exp(-((x - 20) * (x - 20) + y * y) / 200) - std::exp(-((x + 20) * (x + 20) + y * y) / 200);
+            V(v, 2) = a * std::exp(-(x * x + 0.5 * y * y) / 1250) + k * b * side;
+        }
+        set.shapes.row(s) = dataset::flatten(V);
+    }
+    return set;
+}
+
+} // namespace
+
+TEST_CASE("realism: the antisymmetric share is 0 for mirror-symmetric faces, 1 for antisymmetric variation, and scales as k^2")
+{
+    const Eigen::VectorXd ones = Eigen::VectorXd::Ones(21 * 25);
+    // Symmetric faces only (k = 0).
+    const Asymmetry none = antisymmetricShare(mirrorSet(0), ones);
+    REQUIRE(none.measured);
+    REQUIRE(none.pairedVertices == 21 * 25);
+    REQUIRE(none.share < 1e-20);
+    // A set whose symmetric bump is the same on every face varies only antisymmetrically.
+    FaceSet onlyAntisymmetric = mirrorSet(1);
+    const FaceSet symmetric = mirrorSet(0);
+    const Eigen::RowVectorXd meanSymmetric = symmetric.shapes.colwise().mean();
+    onlyAntisymmetric.shapes = onlyAntisymmetric.shapes - symmetric.shapes;
+    onlyAntisymmetric.shapes.rowwise() += meanSymmetric;
+    // (Not to 1e-12: the set's mean face carries the mean antisymmetric bump, so the mirror
+    // plane fitted to its landmark pairs tilts by a few 1e-5 rad, and 1e-7 of the variance leaks.)
+    REQUIRE(antisymmetricShare(onlyAntisymmetric, ones).share == Approx(1.0).epsilon(1e-6));
+    // Mixed: the two parts are orthogonal over a symmetric grid, so share / (1 - share) grows
+    // as the square of the antisymmetric part's scale (to the mirror plane's tilt, above).
+    const double s1 = antisymmetricShare(mirrorSet(1), ones).share, s3 = antisymmetricShare(mirrorSet(3), ones).share;
+    INFO("share " << s1 << " at k = 1, " << s3 << " at k = 3");
+    REQUIRE(s1 > 0.001);
+    REQUIRE(s1 < 0.5);
+    REQUIRE(s3 / (1 - s3) == Approx(9 * s1 / (1 - s1)).epsilon(1e-5));
+    // Zero weights leave vertices out: over a disc round the nose (a mask symmetric about the
+    // midline, where the two parts stay orthogonal) only its vertices count, and the k^2 law holds
+    // there too, with another share.
+    const Mesh grid = makeGrid(21, 25, 100, 120);
+    Eigen::VectorXd disc = Eigen::VectorXd::Zero(grid.V.rows());
+    int inside = 0;
+    for (Eigen::Index v = 0; v < grid.V.rows(); ++v)
+        if (grid.V.row(v).head<2>().norm() < 30) {
+            disc(v) = 1;
+            ++inside;
+        }
+    const Asymmetry d1 = antisymmetricShare(mirrorSet(1), disc), d3 = antisymmetricShare(mirrorSet(3), disc);
+    INFO("over the disc: " << d1.share << " at k = 1, " << d3.share << " at k = 3");
+    REQUIRE(d1.pairedVertices == inside);
+    REQUIRE(d1.share != Approx(s1).epsilon(0.01));
+    REQUIRE(d3.share / (1 - d3.share) == Approx(9 * d1.share / (1 - d1.share)).epsilon(1e-5));
+}
+
+TEST_CASE("realism: the antisymmetric share refuses bad weights and reports a set with few mirror partners as not measured")
+{
+    const FaceSet set = mirrorSet(1);
+    REQUIRE_THROWS_WITH(antisymmetricShare(set, Eigen::VectorXd::Ones(3)), Catch::Contains("3 weights for 525 vertices"));
+    Eigen::VectorXd bad = Eigen::VectorXd::Ones(525);
+    bad(7) = -1;
+    REQUIRE_THROWS_WITH(antisymmetricShare(set, bad), Catch::Contains("a weight is negative"));
+    REQUIRE_THROWS_WITH(antisymmetricShare(set, Eigen::VectorXd::Zero(525)), Catch::Contains("no vertex has a positive weight"));
+    // The left half lifted 100 mm off the plane: only the vertices on and next to the midline
+    // have a vertex near their mirror image (75 of 525).
+    FaceSet lopsided = set;
+    const Mesh grid = makeGrid(21, 25, 100, 120);
+    for (Eigen::Index f = 0; f < lopsided.shapes.rows(); ++f)
+        for (Eigen::Index v = 0; v < grid.V.rows(); ++v)
+            if (grid.V(v, 0) > 1e-9)
+                lopsided.shapes(f, 3 * v + 2) += 100;
+    lopsided.landmarks.clear();
+    const Asymmetry a = antisymmetricShare(lopsided, Eigen::VectorXd::Ones(525));
+    INFO(a.message);
+    REQUIRE(!a.measured);
+    REQUIRE_THAT(a.message, Catch::Contains("mirror: only 75 of 525 weighted vertices have a vertex within"));
+}
+
 TEST_CASE("vertex areas: a third of each triangle, summing to the surface's area")
 {
     const Mesh grid = makeGrid(11, 6, 50, 20);

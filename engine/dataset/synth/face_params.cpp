@@ -204,9 +204,9 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
 
     // Shape fields: symmetric ones share a factor per lattice row and the face-wide factors;
     // antisymmetric ones are independent and smaller (faces are nearly symmetric: 1.4 mm,
-    // 0.9 until v14, makes the antisymmetric part 2.0% of the set's variance over the central
-    // face, ICT-FaceKit's 1.9%, v14's 0.8%). The symmetric ones have non-zero means
-    // (kFieldMeans, fitted with the means above); the antisymmetric ones' stay 0.
+    // 0.9 until v14, makes the antisymmetric share of the set's variation over the central face
+    // 2.0%, ICT-FaceKit's 1.6%, v14's 0.8%: `facesketch eval realism`). The symmetric ones have
+    // non-zero means (kFieldMeans, fitted with the means above); the antisymmetric ones' stay 0.
     double rowFactor[7];
     for (double& u : rowFactor)
         u = rng.normal();
