@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/QR>
 #include <cmath>
+#include <functional>
 #include <numeric>
 
 using namespace facesketch;
@@ -21,26 +22,35 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A bumpy height field 100 x 120 mm (21 x 25 vertices), `samples` faces that differ in the
-// bump's height and width, with five central landmarks on it.
-FaceSet bumpySet(int samples)
+// `samples` faces on a 100 x 120 mm grid (21 x 25 vertices, symmetric about x = 0) with
+// heights z = height(s, x, y), and six landmarks on it (three left / right pairs' worth).
+FaceSet gridSet(const char* name, int samples, const std::function<double(int, double, double)>& height)
 {
     const Mesh grid = makeGrid(21, 25, 100, 120);
     FaceSet set;
-    set.name = "bumpy";
+    set.name = name;
     set.triangles = grid.F;
     set.shapes.resize(samples, 3 * grid.V.rows());
     for (int s = 0; s < samples; ++s) {
         Vertices V = grid.V;
-        const double height = 20 + 3 * std::sin(1.3 * s), width = 25 + 4 * std::cos(0.7 * s + 0.2);
         for (Eigen::Index v = 0; v < V.rows(); ++v)
-            V(v, 2) = height * std::exp(-(V(v, 0) * V(v, 0) + 0.5 * V(v, 1) * V(v, 1)) / (2 * width * width)) + 0.1 * s * V(v, 0) * 0.01;
+            V(v, 2) = height(s, V(v, 0), V(v, 1));
         set.shapes.row(s) = dataset::flatten(V);
     }
     // Grid vertex (i, j) is row j * 21 + i; x = -50 + 5 i, y = -60 + 5 j.
     set.landmarks = { { "en_r", 16 * 21 + 5 }, { "en_l", 16 * 21 + 15 }, { "prn", 12 * 21 + 10 }, { "ch_r", 5 * 21 + 6 },
         { "ch_l", 5 * 21 + 14 }, { "gn", 1 * 21 + 10 } };
     return set;
+}
+
+// A bumpy height field: `samples` faces that differ in the bump's height and width, with five
+// central landmarks on it.
+FaceSet bumpySet(int samples)
+{
+    return gridSet("bumpy", samples, [](int s, double x, double y) {
+        const double height = 20 + 3 * std::sin(1.3 * s), width = 25 + 4 * std::cos(0.7 * s + 0.2);
+        return height * std::exp(-(x * x + 0.5 * y * y) / (2 * width * width)) + 0.1 * s * x * 0.01;
+    });
 }
 
 // Two samples of the plane z = z0 +- 1 (20 x 20 vertices over 100 x 100 mm) plus five vertices
@@ -250,29 +260,21 @@ TEST_CASE("shape spectrum: a set with a known spectrum gives known mode counts")
 
 namespace {
 
-// 40 faces on the symmetric grid of bumpySet, each the sum of a symmetric bump of height a_s and
+// 40 faces on the symmetric grid of gridSet, each the sum of a symmetric bump of height a_s and
 // an antisymmetric pair of bumps (up on one side, down on the other) of height k b_s, the
 // draws a_s and b_s independent across faces.
 FaceSet mirrorSet(double k)
 {
-    const Mesh grid = makeGrid(21, 25, 100, 120);
-    FaceSet set;
-    set.name = "mirror";
-    set.triangles = grid.F;
-    set.landmarks = bumpySet(1).landmarks;
     Random random(17);
-    set.shapes.resize(40, 3 * grid.V.rows());
+    std::vector<double> a, b;
     for (int s = 0; s < 40; ++s) {
-        const double a = 20 + 3 * random.normal(), b = random.normal();
-        Vertices V = grid.V;
-        for (Eigen::Index v = 0; v < V.rows(); ++v) {
-            const double x = V(v, 0), y = V(v, 1);
-            const double side = std::exp(-((x - 20) * (x - 20) + y * y) / 200) - std::exp(-((x + 20) * (x + 20) + y * y) / 200);
-            V(v, 2) = a * std::exp(-(x * x + 0.5 * y * y) / 1250) + k * b * side;
-        }
-        set.shapes.row(s) = dataset::flatten(V);
+        a.push_back(20 + 3 * random.normal());
+        b.push_back(random.normal());
     }
-    return set;
+    return gridSet("mirror", 40, [&](int s, double x, double y) {
+        const double side = std::exp(-((x - 20) * (x - 20) + y * y) / 200) - std::exp(-((x + 20) * (x + 20) + y * y) / 200);
+        return a[static_cast<size_t>(s)] * std::exp(-(x * x + 0.5 * y * y) / 1250) + k * b[static_cast<size_t>(s)] * side;
+    });
 }
 
 } // namespace
