@@ -58,7 +58,7 @@ constexpr double kFieldMeans[28] = {
 
 // Face-wide factors (v15): every parameter drawn below and every symmetric shape field shares
 // kFactorWeight of its standard normal with kFaceFactors factors of the face, each through its
-// own fixed direction of loadings (a row of kFactorLoadings). Real faces are built that way:
+// own fixed direction of loadings (a row of factorLoadings()). Real faces are built that way:
 // ICT-FaceKit's nose alone predicts the rest of the face to 0.36 of the mean face's error,
 // v14's (independent features and local fields) to 0.60 (`facesketch eval observe --region
 // nose`, docs/realism.md "Now (4 December, v15)"). The loadings are random directions, fixed by
