@@ -1,7 +1,8 @@
 // `facesketch bench sketch`: one stroke of about 60 points from the stroke file to the updated
 // face (issue 12), on the synthetic low, high and ultra sets (about 900, 6,000 and 25,000
 // vertices): the session file parsed, the stroke read (candidates, mapping) and applied to the
-// tracking model (reconstruction), each part listed.
+// tracking model (reconstruction), then refined against the rebuilt face (sketch/refine.h: each
+// pass a reading and a rebuild more), each part listed, summed over the passes.
 #include "bench.h"
 #include "sketch_data.h"
 
@@ -10,6 +11,7 @@
 #include "dataset/synth/synth_dataset.h"
 #include "model/head_model.h"
 #include "sketch/mapper.h"
+#include "sketch/refine.h"
 #include "sketch/session.h"
 #include "sketch/simulate.h"
 #include "sketch/tracking.h"
@@ -81,35 +83,45 @@ void benchSketch(const BenchOptions& options, std::ostream& out)
             << " px\n";
 
         sketch::StrokeReader reader(*device, model, d.candidateFaces, d.flags);
-        const Mesh mean = meanMesh(model);
-        for (sketch::MapperKind kind : { sketch::MapperKind::Hmm, sketch::MapperKind::Nearest }) {
+        // The product's reading (the HMM, refined: sketch/refine.h), the HMM's first reading
+        // alone, and the nearest mapper's.
+        struct Variant {
+            sketch::MapperKind kind;
+            int passes;
+            const char* suffix;
+        };
+        for (const Variant& variant : { Variant { sketch::MapperKind::Hmm, sketch::RefineOptions {}.passes, "" },
+                 Variant { sketch::MapperKind::Hmm, 0, "_unrefined" }, Variant { sketch::MapperKind::Nearest, 0, "_nearest" } }) {
+            sketch::RefineOptions refine;
+            refine.passes = variant.passes;
             std::vector<double> total, load, candidates, mapping, rebuild;
+            int passes = 0;
             // One untimed run warms the caches and the GPU pipelines.
             for (int r = 0; r <= options.repeat; ++r) {
                 sketch::TrackingModel tracking(model);
                 Stopwatch clock;
                 const sketch::Session loaded = sketch::loadSession(file);
                 const double loadMs = clock.milliseconds();
-                const sketch::StrokeReading reading = reader.read(loaded.actions[0].stroke, mean, kind);
-                Stopwatch applyClock;
-                tracking.apply(reading);
-                const double applyMs = applyClock.milliseconds();
+                const sketch::ReadResult done
+                    = sketch::readAndApply(reader, tracking, loaded.actions[0].stroke, variant.kind, {}, {}, refine);
                 const double all = clock.milliseconds();
                 if (r == 0)
                     continue;
                 total.push_back(all);
                 load.push_back(loadMs);
-                candidates.push_back(reader.lastTiming().candidatesMs);
-                mapping.push_back(reader.lastTiming().mappingMs);
-                rebuild.push_back(applyMs);
+                candidates.push_back(done.timing.candidatesMs);
+                mapping.push_back(done.timing.mappingMs);
+                rebuild.push_back(done.applyMs);
+                passes = done.passes;
             }
-            const std::string suffix
-                = cat(kind == sketch::MapperKind::Hmm ? "" : "_" + std::string(sketch::mapperName(kind)), "_", nv, "v");
+            const std::string suffix = cat(variant.suffix, "_", nv, "v");
             out << "sketch_stroke_ms" << suffix << " " << median(total) << " ms\n";
             out << "sketch_stroke_load_ms" << suffix << " " << median(load) << " ms\n";
             out << "sketch_stroke_candidates_ms" << suffix << " " << median(candidates) << " ms\n";
             out << "sketch_stroke_mapping_ms" << suffix << " " << median(mapping) << " ms\n";
             out << "sketch_stroke_rebuild_ms" << suffix << " " << median(rebuild) << " ms\n";
+            if (variant.passes > 0)
+                out << "sketch_stroke_refine_passes" << suffix << " " << passes << " passes\n";
         }
         fs::remove_all(folder);
     }

@@ -25,7 +25,9 @@ namespace {
 struct EvalStrokesCommand {
     std::string model, dataset, json, output, views = "front,profile,34", mappers = "nearest,heuristic,hmm,simple";
     double noise = 1.0, extreme = 1.0, errorScale = 10.0;
-    int size = 1024, renders = 2, maxFaces = 0, similarFaces = sketch::MapperParams {}.similarFaces, rereads = 0;
+    int size = 1024, renders = 2, maxFaces = 0, similarFaces = sketch::MapperParams {}.similarFaces, rereads = -1;
+    int refine = sketch::RefineOptions {}.passes;
+    std::string refineMapper = "simple";
     std::uint64_t seed = 1;
     bool noCorrelation = false, quiet = false, noProject = false, ownContours = false, thesisObservations = false;
     std::string oracle = "none", faces = "test";
@@ -116,7 +118,13 @@ void runEvalStrokes(const EvalStrokesCommand& c)
     o.params.similarFaces = c.similarFaces;
     for (const std::string& assignment : c.mapperParams)
         sketch::setMapperParam(o.params, assignment);
-    o.rereads = c.rereads;
+    o.refine.passes = c.refine;
+    o.refine.mapper = c.refineMapper == "same" ? std::nullopt : std::optional(sketch::parseMapper(c.refineMapper));
+    if (c.rereads >= 0) {
+        // The older spelling: passes of the first reading's own mapper.
+        o.refine.passes = c.rereads;
+        o.refine.mapper.reset();
+    }
     o.oracle = evaluation::parseStrokeOracle(c.oracle);
     o.keepFaces = c.output.empty() ? 0 : c.renders;
     if (!c.quiet)
@@ -145,8 +153,8 @@ void runEvalStrokes(const EvalStrokesCommand& c)
             { "plane_noise_mm", c.planeNoise }, { "depth_noise_mm", c.depthNoise }, { "robust_passes", c.robustPasses },
             { "robust_k", c.robustK }, { "project_onto_face_space", !c.noProject }, { "view_plane_only", o.params.viewPlaneOnly },
             { "own_contours", c.ownContours }, { "across_stroke", o.params.acrossStrokeOnly }, { "similar_faces", c.similarFaces },
-            { "rereads", c.rereads }, { "mapper_params", c.mapperParams }, { "oracle", c.oracle }, { "faces", c.faces },
-            { "results", records } };
+            { "refine_passes", o.refine.passes }, { "refine_mapper", o.refine.mapper ? sketch::mapperName(*o.refine.mapper) : "same" },
+            { "mapper_params", c.mapperParams }, { "oracle", c.oracle }, { "faces", c.faces }, { "results", records } };
         writeFileAtomically(c.json, [&](std::ostream& out) { out << doc.dump(1) << "\n"; });
         std::cout << "wrote " << c.json << "\n";
     }
@@ -221,14 +229,25 @@ void addEvalStrokesCommand(CLI::App& eval)
     cmd->add_option("--similar-faces", c->similarFaces, "Candidates only of this many training faces nearest the current face (0: all)")
         ->capture_default_str()
         ->check(CLI::Range(0, 100000));
-    cmd->add_option("--rereads", c->rereads, "Read each stroke again this many times against the face its reading rebuilt")
-        ->capture_default_str()
-        ->check(CLI::Range(0, 10));
+    auto* refine = cmd->add_option("--refine", c->refine,
+                          "Refinement passes: read each stroke again this many times against the face its reading rebuilt, each "
+                          "reading replacing the previous one (sketch/refine.h; 0: the first reading alone)")
+                       ->capture_default_str()
+                       ->check(CLI::Range(0, 16));
+    auto* refineMapper = cmd->add_option("--refine-mapper", c->refineMapper,
+                                "Mapper of the refinement passes: nearest, heuristic, hmm, simple, or same (the first reading's)")
+                             ->capture_default_str()
+                             ->check(CLI::IsMember({ "nearest", "heuristic", "hmm", "simple", "same" }));
+    cmd->add_option("--rereads", c->rereads, "The older spelling of --refine N --refine-mapper same")
+        ->check(CLI::Range(0, 16))
+        ->excludes(refine)
+        ->excludes(refineMapper);
     cmd->add_option("--mapper-param", c->mapperParams,
         "Set one mapper parameter, NAME=VALUE (repeatable; names as in sketch/mapper.h MapperParams, e.g. sigmaDTau=2, useSkeleton=0)");
     cmd->add_flag("--own-contours", c->ownContours, "The current face's own contours join the candidate cloud");
     cmd->add_option("--oracle", c->oracle,
-           "Diagnosis: give the tracking model the mapped vertices at the true depth (true-depth) or true position (true-position)")
+           "Diagnosis: give the tracking model the mapped vertices at the true depth (true-depth) or true position (true-position), "
+           "or instead every vertex the stroke traces, across its true contour (true-curve) or at its true image (true-image)")
         ->capture_default_str();
     cmd->add_option("--json", c->json, "Write the records to this JSON file");
     cmd->add_option("-o,--output", c->output, "Folder for colour-coded error renders (blue to red)");

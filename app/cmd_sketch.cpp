@@ -29,6 +29,7 @@ namespace {
 struct SketchCommand {
     std::string model, dataset, session, output, render, mapper;
     int similar = 3;
+    int refine = sketch::RefineOptions {}.passes;
 };
 
 void runSketch(const SketchCommand& c)
@@ -43,6 +44,9 @@ void runSketch(const SketchCommand& c)
     gpu::ScopedDevice device;
     // The app replays through the same SessionReplayer (sketch/replay.h): the same face.
     sketch::SessionReplayer replayer(*device, m, d.candidateFaces, d.flags, d.landmarks, c.model);
+    sketch::RefineOptions refine;
+    refine.passes = c.refine;
+    replayer.setRefine(refine);
     std::cout << "# " << session.actions.size() << " strokes, " << m.vertexCount() << " vertices, cloud of " << d.candidateFaces.size()
               << " faces\n";
     std::cout << std::fixed << std::setprecision(1);
@@ -78,7 +82,8 @@ void runSketch(const SketchCommand& c)
             std::cout << ", pins nothing" << (r.reading.message.empty() ? "" : ": " + r.reading.message) << "\n";
             continue;
         }
-        std::cout << ", rebuild " << r.applyMs << " ms, " << replayer.tracking().observedVertices() << " vertices observed\n";
+        std::cout << ", refined " << r.refinePasses << "x, rebuild " << r.applyMs << " ms, " << replayer.tracking().observedVertices()
+                  << " vertices observed\n";
         drawn.push_back({ std::move(r.reading), a.stroke.view });
     }
     const Mesh face = replayer.face();
@@ -147,6 +152,11 @@ void addSketchCommand(CLI::App& root)
     cmd->add_option("--render", c->render, "Also a PNG of the face in the last stroke's view with its strokes");
     cmd->add_option("--mapper", c->mapper, "Read every stroke with this mapper instead of the session's")
         ->check(CLI::IsMember({ "nearest", "heuristic", "hmm", "simple" }));
+    cmd->add_option("--refine", c->refine,
+           "Refinement passes per stroke: read again against the face its reading rebuilt, with the simple mapper (sketch/refine.h; 0: "
+           "the first reading alone)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 16));
     cmd->add_option("--similar", c->similar, "Print the k most similar training faces")->capture_default_str()->check(CLI::Range(0, 1000));
     cmd->callback([c] { runSketch(*c); });
 }

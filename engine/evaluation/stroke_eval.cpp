@@ -2,9 +2,11 @@
 
 #include "core/error.h"
 #include "core/stopwatch.h"
+#include "sketch/refine.h"
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 namespace facesketch::evaluation {
 
@@ -26,6 +28,47 @@ Eigen::VectorXd vertexErrors(const Eigen::VectorXd& face, const Mesh& truth)
     return e;
 }
 
+Eigen::Vector3d axisOf(const Eigen::Matrix<double, 2, 3>& P)
+{
+    return P.row(0).transpose().cross(P.row(1).transpose()).normalized();
+}
+
+// One reading's observations against the traced face, before any oracle changes them.
+struct ReadingErrors {
+    double planeMm = 0, depthMm = 0, within1 = 0, within3 = 0, acrossMm = 0;
+    long observations = 0, across = 0;
+    bool hasAcross = false, misread = false;
+};
+
+ReadingErrors readingErrors(const sketch::StrokeReading& reading, const Mesh& traced)
+{
+    ReadingErrors r;
+    const Eigen::Matrix<double, 2, 3>& P = reading.viewPlane;
+    const Eigen::Vector3d axis = axisOf(P);
+    std::vector<double> acrossErrors;
+    for (const sketch::VertexObservation& o : reading.observations) {
+        const Eigen::Vector3d truth = traced.V.row(o.vertex).transpose();
+        const double plane = (P * (o.position - truth)).norm();
+        r.planeMm += plane;
+        r.depthMm += std::abs(axis.dot(o.position - truth));
+        r.within1 += plane <= 1.0;
+        r.within3 += plane <= 3.0;
+        ++r.observations;
+        if (!o.acrossStroke.isZero()) {
+            acrossErrors.push_back(std::abs(o.acrossStroke.dot(o.position - truth)));
+            r.acrossMm += acrossErrors.back();
+            ++r.across;
+        }
+    }
+    if (!acrossErrors.empty()) {
+        const auto middle = acrossErrors.begin() + static_cast<std::ptrdiff_t>(acrossErrors.size() / 2);
+        std::nth_element(acrossErrors.begin(), middle, acrossErrors.end());
+        r.hasAcross = true;
+        r.misread = *middle > kMisreadMm;
+    }
+    return r;
+}
+
 struct Sums {
     double mean = 0, meanFace = 0, observed = 0, readMs = 0, applyMs = 0;
     int faces = 0, strokes = 0, unread = 0, failed = 0;
@@ -33,11 +76,47 @@ struct Sums {
     long observations = 0, across = 0;
     int acrossStrokes = 0, misread = 0;
     std::vector<double> faceMeans, meanFaceMeans; ///< per face, for the ratio's interval
+
+    void add(const ReadingErrors& r)
+    {
+        planeMm += r.planeMm;
+        depthMm += r.depthMm;
+        within1 += r.within1;
+        within3 += r.within3;
+        acrossMm += r.acrossMm;
+        observations += r.observations;
+        across += r.across;
+        acrossStrokes += r.hasAcross;
+        misread += r.misread;
+    }
 };
 
-Eigen::Vector3d axisOf(const Eigen::Matrix<double, 2, 3>& P)
+// The vertices a simulated stroke traces at their true positions, measured in the view plane P:
+// across their contour only (the normal of the contour's image through each vertex's
+// neighbours on it), or their whole image.
+std::vector<sketch::VertexObservation> tracedContour(
+    const sketch::SimulatedStroke& stroke, const Mesh& traced, const Eigen::Matrix<double, 2, 3>& P, bool acrossOnly)
 {
-    return P.row(0).transpose().cross(P.row(1).transpose()).normalized();
+    std::vector<sketch::VertexObservation> out;
+    const std::vector<int>& v = stroke.vertices;
+    std::set<int> seen;
+    for (size_t i = 0; i < v.size(); ++i) {
+        if (!seen.insert(v[i]).second)
+            continue;
+        sketch::VertexObservation o;
+        o.vertex = static_cast<std::uint32_t>(v[i]);
+        o.position = traced.V.row(v[i]).transpose();
+        o.viewPlaneOnly = true;
+        if (acrossOnly) {
+            const int before = v[i > 0 ? i - 1 : i], after = v[i + 1 < v.size() ? i + 1 : i];
+            const Eigen::Vector2d t = P * (traced.V.row(after) - traced.V.row(before)).transpose();
+            if (t.norm() < 1e-9)
+                continue;
+            o.acrossStroke = P.transpose() * Eigen::Vector2d(-t.y(), t.x()).normalized();
+        }
+        out.push_back(o);
+    }
+    return out;
 }
 
 } // namespace
@@ -51,16 +130,21 @@ const char* strokeOracleName(StrokeOracle oracle)
         return "true-depth";
     case StrokeOracle::TruePosition:
         return "true-position";
+    case StrokeOracle::TrueCurve:
+        return "true-curve";
+    case StrokeOracle::TrueImage:
+        return "true-image";
     }
     return "unknown";
 }
 
 StrokeOracle parseStrokeOracle(const std::string& text)
 {
-    for (StrokeOracle o : { StrokeOracle::None, StrokeOracle::TrueDepth, StrokeOracle::TruePosition })
+    for (StrokeOracle o :
+        { StrokeOracle::None, StrokeOracle::TrueDepth, StrokeOracle::TruePosition, StrokeOracle::TrueCurve, StrokeOracle::TrueImage })
         if (text == strokeOracleName(o))
             return o;
-    fail("oracle '", text, "' is none of none, true-depth, true-position");
+    fail("oracle '", text, "' is none of none, true-depth, true-position, true-curve, true-image");
 }
 
 StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data, const StrokeEvalOptions& options)
@@ -118,10 +202,27 @@ StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data
                 apply.correlation = options.correlation;
                 for (const sketch::SimulatedStroke* stroke : sequence) {
                     ++s.strokes;
-                    Stopwatch clock;
-                    sketch::StrokeReading reading;
+                    // What the last reading applied measured against the truth (each pass's
+                    // reading replaces the previous one's, so the last one is counted).
+                    ReadingErrors last;
+                    const sketch::ReadingHook hook = [&](sketch::StrokeReading& reading) {
+                        last = readingErrors(reading, traced);
+                        if (options.oracle == StrokeOracle::TrueCurve || options.oracle == StrokeOracle::TrueImage)
+                            reading.observations
+                                = tracedContour(*stroke, traced, reading.viewPlane, options.oracle == StrokeOracle::TrueCurve);
+                        else if (options.oracle != StrokeOracle::None)
+                            for (sketch::VertexObservation& o : reading.observations) {
+                                const Eigen::Vector3d truth = traced.V.row(o.vertex).transpose();
+                                const Eigen::Vector3d axis = axisOf(reading.viewPlane);
+                                if (options.oracle == StrokeOracle::TrueDepth)
+                                    o.position += axis * axis.dot(truth - o.position);
+                                else
+                                    o.position = truth;
+                            }
+                    };
+                    sketch::ReadResult done;
                     try {
-                        reading = reader.read(stroke->stroke, tracking.faceMesh(), kind, options.params);
+                        done = sketch::readAndApply(reader, tracking, stroke->stroke, kind, options.params, apply, options.refine, hook);
                     } catch (const Error& e) {
                         // A simulated stroke the reader refuses is a finding, not a reason to
                         // stop: counted and its first message kept.
@@ -130,56 +231,13 @@ StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data
                                 cat(view, " ", sketch::mapperName(kind), " ", data.testNames[f], " ", stroke->feature, ": ", e.what()));
                         continue;
                     }
-                    s.readMs += clock.milliseconds();
-                    if (reading.observations.empty()) {
+                    s.readMs += done.readMs;
+                    if (done.reading.observations.empty()) {
                         ++s.unread;
                         continue;
                     }
-                    const Eigen::Matrix<double, 2, 3>& P = reading.viewPlane;
-                    const Eigen::Vector3d axis = axisOf(P);
-                    std::vector<double> acrossErrors;
-                    for (sketch::VertexObservation& o : reading.observations) {
-                        const Eigen::Vector3d truth = traced.V.row(o.vertex).transpose();
-                        const double plane = (P * (o.position - truth)).norm();
-                        s.planeMm += plane;
-                        s.depthMm += std::abs(axis.dot(o.position - truth));
-                        s.within1 += plane <= 1.0;
-                        s.within3 += plane <= 3.0;
-                        ++s.observations;
-                        if (!o.acrossStroke.isZero()) {
-                            acrossErrors.push_back(std::abs(o.acrossStroke.dot(o.position - truth)));
-                            s.acrossMm += acrossErrors.back();
-                            ++s.across;
-                        }
-                        if (options.oracle == StrokeOracle::TrueDepth)
-                            o.position += axis * axis.dot(truth - o.position);
-                        else if (options.oracle == StrokeOracle::TruePosition)
-                            o.position = truth;
-                    }
-                    if (!acrossErrors.empty()) {
-                        const auto middle = acrossErrors.begin() + static_cast<std::ptrdiff_t>(acrossErrors.size() / 2);
-                        std::nth_element(acrossErrors.begin(), middle, acrossErrors.end());
-                        ++s.acrossStrokes;
-                        s.misread += *middle > kMisreadMm;
-                    }
-                    clock.restart();
-                    tracking.apply(reading, apply);
-                    for (int r = 0; r < options.rereads; ++r) {
-                        sketch::StrokeReading again;
-                        try {
-                            again = reader.read(stroke->stroke, tracking.faceMesh(), kind, options.params);
-                        } catch (const Error&) {
-                            break;
-                        }
-                        if (again.observations.empty())
-                            break;
-                        if (options.oracle == StrokeOracle::TruePosition)
-                            for (sketch::VertexObservation& o : again.observations)
-                                o.position = traced.V.row(o.vertex).transpose();
-                        tracking.undo();
-                        tracking.apply(again, apply);
-                    }
-                    s.applyMs += clock.milliseconds();
+                    s.applyMs += done.applyMs;
+                    s.add(last);
                 }
                 const Eigen::VectorXd e = vertexErrors(tracking.face(), traced);
                 s.mean += e.mean();

@@ -12,6 +12,7 @@
 #include "evaluation/interval.h"
 #include "gpu/device.h"
 #include "sketch/mapper.h"
+#include "sketch/refine.h"
 #include "sketch/simulate.h"
 #include "sketch/tracking.h"
 #include "stats/face_model.h"
@@ -39,13 +40,20 @@ enum class StrokeOracle {
     TrueDepth,    ///< the mapped vertices, each at its position adapted to the stroke but with the
                   ///< traced face's depth along the view axis (identity and in-plane error only)
     TruePosition, ///< the mapped vertices at the traced face's positions (identity error only)
+    /// Not the reading's vertices but every vertex the stroke traces (SimulatedStroke::vertices),
+    /// each as one row across the true contour at its true image: the tracking model knows
+    /// which vertices the stroke draws and where their contour runs, nothing along it. The
+    /// ceiling of any reader whose rows say where a contour runs (with --noise 0).
+    TrueCurve,
+    /// The same vertices at their true image, across and along the contour.
+    TrueImage,
 };
 // An oracle keeps each row's direction: a row across a jittered stroke then measures the true
 // position in a slightly wrong direction and passes on some of the truth along the stroke
 // (docs/sketching.md, "The across-stroke oracle leaks"). For the ceiling of rows across the
 // stroke, run it with --noise 0.
 
-/// "none", "true-depth", "true-position"; parseStrokeOracle throws Error naming other text.
+/// "none", "true-depth", "true-position", "true-curve", "true-image"; parseStrokeOracle throws Error naming other text.
 const char* strokeOracleName(StrokeOracle oracle);
 StrokeOracle parseStrokeOracle(const std::string& text);
 
@@ -58,10 +66,10 @@ struct StrokeEvalOptions {
     sketch::SimulateOptions simulate; ///< angles ignored (from `views`); seed + face index per face
     sketch::TrackingOptions tracking;
     bool correlation = true;
-    /// Each stroke is read again this many times against the face its previous reading rebuilt,
-    /// that reading replacing the previous one (the tracking model's undo, then apply): mapping
-    /// and reconstruction iterated (sketch::readIterated).
-    int rereads = 0;
+    /// How each stroke's reading is refined against the face it rebuilt (sketch/refine.h); the
+    /// product's default. Statistics of a reading (plane, depth, across, misread) are of the
+    /// last reading applied.
+    sketch::RefineOptions refine;
     /// Diagnosis only: replace parts of each reading by the truth (StrokeOracle).
     StrokeOracle oracle = StrokeOracle::None;
     /// Keep per-vertex errors and reconstructions of the first this many test faces (renders).

@@ -42,12 +42,17 @@ ReplayOutcome SessionReplayer::apply(const StrokeAction& action, std::optional<M
         out.kind = ReplayOutcome::Kind::PinsNothing;
         return out;
     }
-    clock.restart();
     ApplyOptions apply;
     apply.correlation = action.reading.correlation;
     apply.mirror = action.reading.symmetry ? mirror_.get() : nullptr;
-    tracking_.apply(out.reading, apply);
-    out.applyMs = clock.milliseconds();
+    ReadResult done
+        = applyAndRefine(reader_, tracking_, action.stroke, std::move(out.reading), out.mapper, MapperParams {}, apply, refine_);
+    out.reading = std::move(done.reading);
+    out.refinePasses = done.passes;
+    out.readMs += done.readMs;
+    out.timing.candidatesMs += done.timing.candidatesMs;
+    out.timing.mappingMs += done.timing.mappingMs;
+    out.applyMs = done.applyMs;
     out.kind = ReplayOutcome::Kind::Applied;
     return out;
 }

@@ -4,11 +4,12 @@
 // (docs/session-format.md). Per stroke: read it against the current face with its own mapper
 // (or an override) through a StrokeReader (sketch/mapper.h), and, if it pins any vertex, apply
 // the reading to the tracking model (sketch/tracking.h) with the stroke's correlation and
-// symmetry options. The mirror map (sketch/symmetry.h) is found from the model's mean face the
-// first time a stroke asks for symmetry.
+// symmetry options and refine it against the rebuilt face (sketch/refine.h). The mirror map (sketch/symmetry.h) is found from the model's
+// mean face the first time a stroke asks for symmetry.
 
 #include "gpu/device.h"
 #include "sketch/mapper.h"
+#include "sketch/refine.h"
 #include "sketch/session.h"
 #include "sketch/symmetry.h"
 #include "sketch/tracking.h"
@@ -30,11 +31,12 @@ struct ReplayOutcome {
     };
     Kind kind = Kind::Refused;
     MapperKind mapper = MapperKind::Hmm;
-    StrokeReading reading;       ///< empty when refused
+    StrokeReading reading;       ///< empty when refused; when applied, the one the face follows
+    int refinePasses = 0;        ///< refinement passes applied (sketch/refine.h)
     std::string error;           ///< when refused
-    double readMs = 0;           ///< wall time of the reading
+    double readMs = 0;           ///< wall time of the readings (the first and the refinement passes)
     StrokeReader::Timing timing; ///< the reader's split of readMs
-    double applyMs = 0;          ///< wall time of the tracking model's rebuild (Applied only)
+    double applyMs = 0;          ///< wall time of the tracking model's rebuilds (Applied only)
     bool mirrorFound = false;    ///< this stroke found the mirror map (mirror() now holds it)
 };
 
@@ -64,6 +66,14 @@ public:
     /// The mirror map, once a symmetric stroke has needed it; nullptr before.
     const MirrorMap* mirror() const { return mirror_.get(); }
     StrokeReader& reader() { return reader_; }
+    /// The refinement of every stroke applied from now on (default: RefineOptions{}). Throws
+    /// Error for invalid options, keeping the previous ones.
+    void setRefine(const RefineOptions& refine)
+    {
+        refine.validate();
+        refine_ = refine;
+    }
+    const RefineOptions& refine() const { return refine_; }
 
 private:
     const stats::FaceModel& model_;
@@ -72,6 +82,7 @@ private:
     StrokeReader reader_;
     TrackingModel tracking_;
     std::unique_ptr<MirrorMap> mirror_;
+    RefineOptions refine_;
 };
 
 } // namespace facesketch::sketch

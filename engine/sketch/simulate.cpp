@@ -38,6 +38,8 @@ public:
         end_ = direction(false);
     }
     double total() const { return s_.back(); }
+    /// Arc length at point i of the polyline.
+    double arcAt(size_t i) const { return s_[i]; }
     Eigen::Vector2d at(double t) const
     {
         if (t <= 0)
@@ -182,13 +184,21 @@ Simulation simulateStrokes(const Mesh& face, const Mesh& meanFace, const std::ma
     };
     auto excluded = [&](int v) { return !flags.empty() && (flags[static_cast<size_t>(v)] & VertexExcluded) != 0; };
 
-    std::vector<std::pair<std::string, Polyline>> features;
+    // Each feature with, per polyline point, the vertex it traces.
+    struct Feature {
+        std::string name;
+        Polyline line;
+        std::vector<int> vertices;
+    };
+    std::vector<Feature> features;
     for (const auto& [name, path] : contours) {
         Polyline run;
+        std::vector<int> runVertices;
         auto flush = [&] {
             if (run.size() >= 2 && length(run) >= o.minLengthPx)
-                features.push_back({ name, run });
+                features.push_back({ name, run, runVertices });
             run.clear();
+            runVertices.clear();
         };
         // A loop (eye sockets, nostrils: the last vertex shares an edge with the first) is
         // traced all the way round.
@@ -200,9 +210,10 @@ Simulation simulateStrokes(const Mesh& face, const Mesh& meanFace, const std::ma
             const glm::dvec3 toCamera = camera.toCamera(glm::dvec3(x.x(), x.y(), x.z()));
             const double facing
                 = curvature.normal(v, 0) * toCamera.x + curvature.normal(v, 1) * toCamera.y + curvature.normal(v, 2) * toCamera.z;
-            if (facing > o.facingMin && !excluded(v))
+            if (facing > o.facingMin && !excluded(v)) {
                 run.push_back(screen(x));
-            else
+                runVertices.push_back(v);
+            } else
                 flush();
         }
         flush();
@@ -212,20 +223,28 @@ Simulation simulateStrokes(const Mesh& face, const Mesh& meanFace, const std::ma
     params.silhouetteThreshold = defaultSilhouetteThreshold(nv);
     params.featureSize = meanEdgeLength(sim.traced);
     const ContourLines lines = contourLines(sim.traced, curvature, camera, params, flags);
-    std::vector<Polyline> silhouettes;
+    auto nearestVertex = [&](const Eigen::Vector3d& x) {
+        Eigen::Index best = 0;
+        (sim.traced.V.rowwise() - x.transpose()).rowwise().squaredNorm().minCoeff(&best);
+        return static_cast<int>(best);
+    };
+    std::vector<Feature> silhouettes;
     for (const std::vector<glm::vec3>& c : chain(lines.silhouette)) {
-        Polyline q;
-        for (const glm::vec3& p : c)
-            q.push_back(screen(Eigen::Vector3d(p.x, p.y, p.z)));
-        if (length(q) >= o.minLengthPx)
+        Feature q { "silhouette", {}, {} };
+        for (const glm::vec3& p : c) {
+            const Eigen::Vector3d x(p.x, p.y, p.z);
+            q.line.push_back(screen(x));
+            q.vertices.push_back(nearestVertex(x));
+        }
+        if (length(q.line) >= o.minLengthPx)
             silhouettes.push_back(std::move(q));
     }
-    std::sort(silhouettes.begin(), silhouettes.end(), [](const Polyline& a, const Polyline& b) { return length(a) > length(b); });
+    std::sort(silhouettes.begin(), silhouettes.end(), [](const Feature& a, const Feature& b) { return length(a.line) > length(b.line); });
     for (size_t i = 0; i < silhouettes.size() && static_cast<int>(i) < o.silhouettes; ++i)
-        features.push_back({ "silhouette", silhouettes[i] });
+        features.push_back(std::move(silhouettes[i]));
 
     Random random(o.seed);
-    for (const auto& [name, line] : features) {
+    for (const auto& [name, line, lineVertices] : features) {
         const ArcLength arc(line);
         const double total = arc.total();
         int pieces = 1 + static_cast<int>(random.uniform() * o.maxPieces);
@@ -245,6 +264,12 @@ Simulation simulateStrokes(const Mesh& face, const Mesh& meanFace, const std::ma
             b += random.uniform() < 0.5 ? -random.uniform() * o.trim * span : random.uniform() * o.overshoot * span;
             SimulatedStroke s;
             s.feature = name;
+            // The vertices whose points lie within the drawn piece (before its jitter).
+            for (size_t i = 0; i < line.size(); ++i) {
+                const double at = arc.arcAt(i);
+                if (at >= a && at <= b && (s.vertices.empty() || s.vertices.back() != lineVertices[i]))
+                    s.vertices.push_back(lineVertices[i]);
+            }
             s.stroke.view = view;
             s.stroke.surface = Surface::Face;
             double t = a, drawn = 0;

@@ -52,6 +52,11 @@ struct SimulateOptions {
 struct SimulatedStroke {
     Stroke stroke;
     std::string feature; ///< the contour's name, or "silhouette"
+    /// The traced face's vertices along the piece the stroke draws, in drawing order (for a
+    /// silhouette, the vertex nearest each point of its chain): for diagnoses that give the
+    /// tracking model the true contour (evaluation::StrokeOracle::TrueCurve), never read by a
+    /// mapper.
+    std::vector<int> vertices;
 };
 
 struct Simulation {

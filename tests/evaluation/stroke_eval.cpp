@@ -107,6 +107,29 @@ TEST_CASE("stroke_eval: the diagnostics: mapped vertices at their true positions
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
 
+TEST_CASE("stroke_eval: the contour oracles: the traced vertices across their contour, and at their image, rebuild better still")
+{
+    // Without jitter: a row across a jittered stroke leaks the position along it (stroke_eval.h).
+    const evaluation::StrokeEvalData d = smallData();
+    evaluation::StrokeEvalOptions o;
+    o.views = { { "34", { 45, 0 } } };
+    o.allViews = false;
+    o.mappers = { sketch::MapperKind::Hmm };
+    o.simulate.noisePx = 0;
+    const evaluation::StrokeEvalRecord read = evaluation::evaluateStrokes(test::device(), d, o).records.at(0);
+    o.oracle = evaluation::StrokeOracle::TrueCurve;
+    const evaluation::StrokeEvalRecord curve = evaluation::evaluateStrokes(test::device(), d, o).records.at(0);
+    o.oracle = evaluation::StrokeOracle::TrueImage;
+    const evaluation::StrokeEvalRecord image = evaluation::evaluateStrokes(test::device(), d, o).records.at(0);
+    INFO("read " << read.ratio << ", true curve " << curve.ratio << ", true image " << image.ratio);
+    CHECK(curve.meanMm < read.meanMm);
+    CHECK(image.meanMm < curve.meanMm);
+    CHECK(evaluation::parseStrokeOracle("true-curve") == evaluation::StrokeOracle::TrueCurve);
+    CHECK(evaluation::parseStrokeOracle("true-image") == evaluation::StrokeOracle::TrueImage);
+    REQUIRE_THROWS_WITH(evaluation::parseStrokeOracle("curve"), Catch::Contains("true-curve"));
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
 TEST_CASE("stroke_eval: no test faces, no mappers or another topology are refused")
 {
     evaluation::StrokeEvalData d = smallData();

@@ -2,6 +2,7 @@
 #include "sketch/replay.h"
 
 #include "fixture.h"
+#include "sketch/refine.h"
 #include "sketch/simulate.h"
 #include "test_common.h"
 
@@ -27,7 +28,7 @@ std::vector<Stroke> frontStrokes()
 
 } // namespace
 
-TEST_CASE("replay: strokes give the face of reading and applying them one by one")
+TEST_CASE("replay: strokes give the face of reading, applying and refining them one by one")
 {
     const auto& w = test::sketchWorld();
     const std::vector<Stroke> strokes = frontStrokes();
@@ -42,16 +43,17 @@ TEST_CASE("replay: strokes give the face of reading and applying them one by one
         a.reading.correlation = i != 2;
         const ReplayOutcome out = replayer.apply(a);
         REQUIRE(out.mapper == (i == 1 ? MapperKind::Nearest : MapperKind::Hmm));
-        const StrokeReading r = reader.read(a.stroke, tracking.faceMesh(), out.mapper);
-        REQUIRE(out.reading.observations.size() == r.observations.size());
-        if (r.observations.empty()) {
+        ApplyOptions apply;
+        apply.correlation = a.reading.correlation;
+        const ReadResult r = readAndApply(reader, tracking, a.stroke, out.mapper, {}, apply, RefineOptions {});
+        REQUIRE(out.reading.observations.size() == r.reading.observations.size());
+        REQUIRE(out.refinePasses == r.passes);
+        if (r.reading.observations.empty()) {
             REQUIRE(out.kind == ReplayOutcome::Kind::PinsNothing);
             continue;
         }
         REQUIRE(out.kind == ReplayOutcome::Kind::Applied);
-        ApplyOptions apply;
-        apply.correlation = a.reading.correlation;
-        tracking.apply(r, apply);
+        REQUIRE(out.refinePasses == RefineOptions {}.passes);
         ++applied;
         REQUIRE(replayer.tracking().face() == tracking.face());
     }

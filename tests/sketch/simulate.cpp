@@ -105,6 +105,52 @@ TEST_CASE("simulate: without jitter, trimming or overshoot every point lies on t
     REQUIRE(checked > 100);
 }
 
+TEST_CASE("simulate: each stroke names the vertices it traces, on its contour and under its points")
+{
+    const Inputs& in = inputs();
+    SimulateOptions o;
+    o.noisePx = 0;
+    o.spacingPx = 1; // points at most 1.5 px apart: a chord cuts a corner by under a pixel
+    o.angles = { 45, 0 };
+    const Simulation sim = simulateStrokes(in.face, in.mean, in.contours, in.flags, o);
+    const Camera camera = orbitCamera(sim.strokes.front().stroke.view);
+    auto screen = [&](int v) {
+        const glm::dvec3 q = camera.project(glm::dvec3(in.face.V(v, 0), in.face.V(v, 1), in.face.V(v, 2)));
+        return Eigen::Vector2d(q.x, q.y);
+    };
+    // A silhouette point lies on an edge, so the vertex nearest it is within half an edge.
+    double longestEdgePx = 0;
+    for (Eigen::Index f = 0; f < in.face.F.rows(); ++f)
+        for (int k = 0; k < 3; ++k)
+            longestEdgePx = std::max(longestEdgePx, (screen(in.face.F(f, k)) - screen(in.face.F(f, (k + 1) % 3))).norm());
+    int labelled = 0, silhouettes = 0;
+    for (const SimulatedStroke& s : sim.strokes) {
+        REQUIRE_FALSE(s.vertices.empty());
+        std::vector<Eigen::Vector2d> drawn;
+        for (const StrokePoint& p : s.stroke.points)
+            drawn.push_back({ p.x, p.y });
+        // Every vertex lies under the drawn line (a labelled vertex within the chord error of the
+        // resampled points at the contour's corners; a silhouette's vertex within half an edge),
+        // and consecutive ones differ.
+        for (size_t i = 0; i < s.vertices.size(); ++i) {
+            const int v = s.vertices[i];
+            if (i > 0)
+                REQUIRE(v != s.vertices[i - 1]);
+            REQUIRE(distanceToPath(screen(v), drawn) < (s.feature == "silhouette" ? 0.5 * longestEdgePx : 1.0));
+        }
+        if (s.feature == "silhouette") {
+            ++silhouettes;
+            continue;
+        }
+        const std::vector<int>& path = in.contours.at(s.feature);
+        for (int v : s.vertices)
+            REQUIRE(std::find(path.begin(), path.end(), v) != path.end());
+        ++labelled;
+    }
+    REQUIRE(labelled > 5);
+    REQUIRE(silhouettes > 0);
+}
+
 TEST_CASE("simulate: jitter has the asked standard deviation, overshoot leaves the contour, seeds repeat")
 {
     const Inputs& in = inputs();

@@ -1,0 +1,148 @@
+// Refining a stroke's reading against the face it rebuilt (sketch/refine.h): one history entry
+// whatever the passes, the first reading alone with no passes, a failed pass leaving the
+// previous reading applied, and a refined face closer to the sketched one.
+#include "sketch/refine.h"
+
+#include "core/error.h"
+#include "fixture.h"
+#include "sketch/simulate.h"
+#include "test_common.h"
+
+#include <catch2/catch.hpp>
+
+using namespace facesketch;
+using namespace facesketch::sketch;
+
+namespace {
+
+std::vector<SimulatedStroke> strokesOf(int face, ViewAngles angles, std::uint64_t seed = 1)
+{
+    const auto& w = test::sketchWorld();
+    SimulateOptions o;
+    o.imageSize = 600;
+    o.noisePx = 0.5;
+    o.angles = angles;
+    o.seed = seed;
+    return simulateStrokes(w.testFaces[static_cast<size_t>(face)], w.mean, w.contours, w.flags, o).strokes;
+}
+
+double meanError(const Eigen::VectorXd& face, const Mesh& truth)
+{
+    double sum = 0;
+    for (Eigen::Index v = 0; v < truth.V.rows(); ++v)
+        sum += (face.segment<3>(3 * v) - truth.V.row(v).transpose()).norm();
+    return sum / static_cast<double>(truth.V.rows());
+}
+
+} // namespace
+
+TEST_CASE("refine: no passes is the first reading applied, passes stay one undoable stroke")
+{
+    const auto& w = test::sketchWorld();
+    StrokeReader reader(test::device(), w.model, w.candidateFaces, w.flags);
+    const std::vector<SimulatedStroke> strokes = strokesOf(0, { 45, 0 });
+    REQUIRE(strokes.size() >= 2);
+    const Stroke& stroke = strokes.front().stroke;
+
+    TrackingModel plain(w.model);
+    const StrokeReading first = reader.read(stroke, plain.faceMesh(), MapperKind::Hmm);
+    REQUIRE_FALSE(first.observations.empty());
+    plain.apply(first);
+
+    RefineOptions none;
+    none.passes = 0;
+    TrackingModel unrefined(w.model);
+    const ReadResult a = readAndApply(reader, unrefined, stroke, MapperKind::Hmm, {}, {}, none);
+    REQUIRE(a.passes == 0);
+    REQUIRE(unrefined.face() == plain.face());
+    REQUIRE(a.reading.observations.size() == first.observations.size());
+
+    TrackingModel refined(w.model);
+    const Eigen::VectorXd mean = refined.face();
+    const ReadResult b = readAndApply(reader, refined, stroke, MapperKind::Hmm, {}, {}, RefineOptions {});
+    REQUIRE(b.passes == RefineOptions {}.passes);
+    REQUIRE(refined.strokes() == 1);
+    REQUIRE(refined.face() != plain.face());
+    const Eigen::VectorXd after = refined.face();
+    REQUIRE(refined.undo());
+    REQUIRE(refined.face() == mean);
+    REQUIRE_FALSE(refined.undo());
+    REQUIRE(refined.redo());
+    REQUIRE(refined.face() == after);
+}
+
+TEST_CASE("refine: each applied reading goes through the hook, and a pass that cannot be applied keeps the previous one")
+{
+    const auto& w = test::sketchWorld();
+    StrokeReader reader(test::device(), w.model, w.candidateFaces, w.flags);
+    const Stroke stroke = strokesOf(1, { 90, 0 }).front().stroke;
+
+    int calls = 0;
+    TrackingModel counted(w.model);
+    readAndApply(reader, counted, stroke, MapperKind::Hmm, {}, {}, RefineOptions {}, [&](StrokeReading&) { ++calls; });
+    REQUIRE(calls == 1 + RefineOptions {}.passes);
+
+    // The second reading (the first pass) is spoiled so that the tracking model refuses it.
+    TrackingModel spoiled(w.model);
+    TrackingModel reference(w.model);
+    RefineOptions none;
+    none.passes = 0;
+    readAndApply(reader, reference, stroke, MapperKind::Hmm, {}, {}, none);
+    calls = 0;
+    const ReadResult r = readAndApply(reader, spoiled, stroke, MapperKind::Hmm, {}, {}, RefineOptions {}, [&](StrokeReading& reading) {
+        if (++calls == 2)
+            reading.observations.front().acrossStroke = Eigen::Vector3d(2, 0, 0);
+    });
+    REQUIRE(calls == 2);
+    REQUIRE(r.passes == 0);
+    REQUIRE(spoiled.strokes() == 1);
+    REQUIRE(spoiled.face() == reference.face());
+    REQUIRE(r.reading.observations.front().acrossStroke.norm() == Approx(1.0));
+
+    // The first reading refused by the tracking model: an error, nothing changed.
+    TrackingModel untouched(w.model);
+    const Eigen::VectorXd before = untouched.face();
+    REQUIRE_THROWS_WITH(readAndApply(reader, untouched, stroke, MapperKind::Hmm, {}, {}, RefineOptions {},
+                            [](StrokeReading& reading) { reading.observations.front().position.x() = std::nan(""); }),
+        Catch::Contains("not finite"));
+    REQUIRE(untouched.face() == before);
+    REQUIRE(untouched.strokes() == 0);
+}
+
+TEST_CASE("refine: against the rebuilt face's own contours the sketched face is found better from the side")
+{
+    // Every stroke of a test face from the 34 and profile views: the HMM's first readings alone
+    // and refined. Summed over the fixture's test faces so that one face's luck does not decide.
+    const auto& w = test::sketchWorld();
+    StrokeReader reader(test::device(), w.model, w.candidateFaces, w.flags);
+    RefineOptions none;
+    none.passes = 0;
+    double unrefinedSum = 0, refinedSum = 0, meanSum = 0;
+    const int faces = static_cast<int>(std::min<size_t>(w.testFaces.size(), 4));
+    for (int f = 0; f < faces; ++f)
+        for (ViewAngles view : { ViewAngles { 45, 0 }, ViewAngles { 90, 0 } }) {
+            TrackingModel a(w.model), b(w.model);
+            for (const SimulatedStroke& s : strokesOf(f, view, 7 + static_cast<std::uint64_t>(f))) {
+                readAndApply(reader, a, s.stroke, MapperKind::Hmm, {}, {}, none);
+                readAndApply(reader, b, s.stroke, MapperKind::Hmm, {}, {}, RefineOptions {});
+            }
+            const Mesh& truth = w.testFaces[static_cast<size_t>(f)];
+            unrefinedSum += meanError(a.face(), truth);
+            refinedSum += meanError(b.face(), truth);
+            meanSum += meanError(a.model().meanFace, truth);
+        }
+    INFO("mean face " << meanSum << " mm, unrefined " << unrefinedSum << " mm, refined " << refinedSum << " mm (sums)");
+    CHECK(unrefinedSum < meanSum);
+    CHECK(refinedSum < unrefinedSum);
+}
+
+TEST_CASE("refine: pass counts outside [0, 16] are refused")
+{
+    RefineOptions o;
+    o.passes = -1;
+    REQUIRE_THROWS_WITH(o.validate(), Catch::Contains("-1 passes"));
+    o.passes = 17;
+    REQUIRE_THROWS_WITH(o.validate(), Catch::Contains("17 passes"));
+    o.passes = 16;
+    REQUIRE_NOTHROW(o.validate());
+}
