@@ -210,15 +210,16 @@ StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data
                         if (options.oracle == StrokeOracle::TrueCurve || options.oracle == StrokeOracle::TrueImage)
                             reading.observations
                                 = tracedContour(*stroke, traced, reading.viewPlane, options.oracle == StrokeOracle::TrueCurve);
-                        else if (options.oracle != StrokeOracle::None)
+                        else if (options.oracle != StrokeOracle::None) {
+                            const Eigen::Vector3d axis = axisOf(reading.viewPlane);
                             for (sketch::VertexObservation& o : reading.observations) {
                                 const Eigen::Vector3d truth = traced.V.row(o.vertex).transpose();
-                                const Eigen::Vector3d axis = axisOf(reading.viewPlane);
                                 if (options.oracle == StrokeOracle::TrueDepth)
                                     o.position += axis * axis.dot(truth - o.position);
                                 else
                                     o.position = truth;
                             }
+                        }
                     };
                     sketch::ReadResult done;
                     try {

@@ -1,6 +1,7 @@
 #pragma once
 // Reading a stroke and applying it, then refining the reading against the face it rebuilt
-// (not in the thesis; docs/sketching.md, "Refined against the face's own contours").
+// (not in the thesis; docs/sketching.md, "Now: each reading refined against the face it
+// rebuilt").
 //
 // Why: the first reading (the HMM by default) decides which features a stroke draws from the
 // contours of the training faces, and it places the vertices it pins as those faces have them:
@@ -15,8 +16,10 @@
 //
 // Measured (`facesketch eval strokes`, 1 px noise, the HMM first, ratios to the mean face's
 // error, front / profile / 34 / all views): built-in high set, 20 test faces, 0.560 / 0.481 /
-// 0.567 / 0.307 without refinement, 0.558 / 0.439 / 0.412 / 0.293 with two passes; ICT-FaceKit
-// import, 10 test faces, 0.709 / 0.477 / 0.593 / 0.422 and 0.695 / 0.466 / 0.474 / 0.362.
+// 0.567 / 0.307 without refinement, 0.558 / 0.439 / 0.412 / 0.293 with two passes; its 48
+// contour faces 0.618 / 0.525 / 0.517 / 0.337 and 0.583 / 0.482 / 0.509 / 0.294 (the test
+// faces' 34 view gains more than most); ICT-FaceKit import, 10 test faces, 0.709 / 0.477 /
+// 0.593 / 0.422 and 0.695 / 0.466 / 0.474 / 0.362.
 //
 // One stroke stays one entry of the tracking model's history whatever the passes: undoing it
 // undoes all of them.

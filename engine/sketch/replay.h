@@ -4,8 +4,9 @@
 // (docs/session-format.md). Per stroke: read it against the current face with its own mapper
 // (or an override) through a StrokeReader (sketch/mapper.h), and, if it pins any vertex, apply
 // the reading to the tracking model (sketch/tracking.h) with the stroke's correlation and
-// symmetry options and refine it against the rebuilt face (sketch/refine.h). The mirror map (sketch/symmetry.h) is found from the model's
-// mean face the first time a stroke asks for symmetry.
+// symmetry options, and refine it against the rebuilt face (sketch/refine.h). The mirror map
+// (sketch/symmetry.h) is found from the model's mean face the first time a stroke asks for
+// symmetry.
 
 #include "gpu/device.h"
 #include "sketch/mapper.h"

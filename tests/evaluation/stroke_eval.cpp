@@ -31,6 +31,14 @@ evaluation::StrokeEvalData smallData()
     return d;
 }
 
+// The first record of an evaluation with `oracle`.
+evaluation::StrokeEvalRecord firstRecord(
+    const evaluation::StrokeEvalData& d, evaluation::StrokeEvalOptions o, evaluation::StrokeOracle oracle)
+{
+    o.oracle = oracle;
+    return evaluation::evaluateStrokes(test::device(), d, o).records.at(0);
+}
+
 } // namespace
 
 TEST_CASE("stroke_eval: sketching test faces with their own strokes beats the mean face, all views more than one")
@@ -71,11 +79,9 @@ TEST_CASE("stroke_eval: the diagnostics: mapped vertices at their true positions
     o.views = { { "front", { 0, 0 } } };
     o.mappers = { sketch::MapperKind::Hmm };
     o.params = sketch::MapperParams::thesis(); // 3D observations, so that the true depth changes them
-    const evaluation::StrokeEvalRecord read = evaluation::evaluateStrokes(test::device(), d, o).records.at(0);
-    o.oracle = evaluation::StrokeOracle::TrueDepth;
-    const evaluation::StrokeEvalRecord depth = evaluation::evaluateStrokes(test::device(), d, o).records.at(0);
-    o.oracle = evaluation::StrokeOracle::TruePosition;
-    const evaluation::StrokeEvalRecord truth = evaluation::evaluateStrokes(test::device(), d, o).records.at(0);
+    const evaluation::StrokeEvalRecord read = firstRecord(d, o, evaluation::StrokeOracle::None);
+    const evaluation::StrokeEvalRecord depth = firstRecord(d, o, evaluation::StrokeOracle::TrueDepth);
+    const evaluation::StrokeEvalRecord truth = firstRecord(d, o, evaluation::StrokeOracle::TruePosition);
     INFO("read " << read.ratio << ", true depth " << depth.ratio << ", true position " << truth.ratio);
     CHECK(truth.meanMm < depth.meanMm);
     CHECK(depth.meanMm < read.meanMm);
@@ -89,7 +95,6 @@ TEST_CASE("stroke_eval: the diagnostics: mapped vertices at their true positions
     CHECK(read.acrossMm == 0);
     // The defaults pin across the stroke: that error is one component of the error in the view
     // plane, so smaller than it (the rest lies along the stroke).
-    o.oracle = evaluation::StrokeOracle::None;
     o.params = {};
     const evaluation::StrokeEvalRecord across = evaluation::evaluateStrokes(test::device(), d, o).records.at(0);
     CHECK(across.acrossMm > 0);
@@ -116,11 +121,9 @@ TEST_CASE("stroke_eval: the contour oracles: the traced vertices across their co
     o.allViews = false;
     o.mappers = { sketch::MapperKind::Hmm };
     o.simulate.noisePx = 0;
-    const evaluation::StrokeEvalRecord read = evaluation::evaluateStrokes(test::device(), d, o).records.at(0);
-    o.oracle = evaluation::StrokeOracle::TrueCurve;
-    const evaluation::StrokeEvalRecord curve = evaluation::evaluateStrokes(test::device(), d, o).records.at(0);
-    o.oracle = evaluation::StrokeOracle::TrueImage;
-    const evaluation::StrokeEvalRecord image = evaluation::evaluateStrokes(test::device(), d, o).records.at(0);
+    const evaluation::StrokeEvalRecord read = firstRecord(d, o, evaluation::StrokeOracle::None);
+    const evaluation::StrokeEvalRecord curve = firstRecord(d, o, evaluation::StrokeOracle::TrueCurve);
+    const evaluation::StrokeEvalRecord image = firstRecord(d, o, evaluation::StrokeOracle::TrueImage);
     INFO("read " << read.ratio << ", true curve " << curve.ratio << ", true image " << image.ratio);
     CHECK(curve.meanMm < read.meanMm);
     CHECK(image.meanMm < curve.meanMm);
