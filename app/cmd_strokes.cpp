@@ -17,7 +17,7 @@ namespace {
 
 struct SimulateCommand {
     std::string dataset, sample, view = "front", output, model, mapper = "hmm";
-    double noise = 1.0, extreme = 1.0;
+    double noise = 1.0, extreme = 1.0, reversed = 0.0, wander = 0.0, wanderLength = 60.0;
     int size = 1024;
     std::uint64_t seed = 1;
     bool symmetry = false;
@@ -57,6 +57,9 @@ void runSimulate(const SimulateCommand& c)
     o.imageSize = c.size;
     o.noisePx = c.noise;
     o.extreme = c.extreme;
+    o.reversed = c.reversed;
+    o.wanderPx = c.wander;
+    o.wanderLengthPx = c.wanderLength;
     o.seed = c.seed;
     const sketch::Simulation sim = sketch::simulateStrokes(face, mean, d.contours, d.flags, o);
     if (sim.strokes.empty())
@@ -110,6 +113,15 @@ void addStrokesCommand(CLI::App& root)
     cmd->add_option("--extreme", c->extreme, "Exaggerate the face away from the mean face by this factor")
         ->capture_default_str()
         ->check(CLI::Range(-10.0, 10.0));
+    cmd->add_option("--reversed", c->reversed, "Probability that a stroke is drawn from its contour's end back to its start")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1.0));
+    cmd->add_option("--wander", c->wander, "Smooth random offset of each stroke from its contour, pixels (standard deviation)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 100.0));
+    cmd->add_option("--wander-length", c->wanderLength, "Correlation length of that offset along the stroke, pixels")
+        ->capture_default_str()
+        ->check(CLI::Range(1.0, 10000.0));
     cmd->add_option("--size", c->size, "Viewport size, pixels")->capture_default_str()->check(CLI::Range(64, 8192));
     cmd->add_option("--seed", c->seed, "Seed")->capture_default_str();
     cmd->add_option("--model", c->model, "Model file the session names (default: DATASET.model)");

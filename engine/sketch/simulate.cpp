@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <unordered_map>
 
 namespace facesketch::sketch {
@@ -133,6 +134,40 @@ bool sharesEdge(const Triangles& F, int a, int b)
     return false;
 }
 
+// A smooth random 2D offset along a stroke (simulate.h, `wanderPx`): in x and in y a zero-mean
+// Gaussian process over the arc length with the squared-exponential kernel sigma^2 exp(-d^2 /
+// (2 l^2)), approximated by K random Fourier features: sigma sqrt(2 / K) sum cos(w_k t + phi_k)
+// with w_k ~ N(0, 1 / l^2) and phi_k uniform in [0, 2 pi) (Rahimi and Recht 2007).
+class Wander {
+public:
+    Wander() = default; // no offset
+    Wander(Random& random, double sigmaPx, double lengthPx)
+        : scale_(sigmaPx * std::sqrt(2.0 / kFeatures))
+    {
+        for (int axis = 0; axis < 2; ++axis)
+            for (int k = 0; k < kFeatures; ++k) {
+                omega_[axis][k] = random.normal() / lengthPx;
+                phase_[axis][k] = 2 * std::numbers::pi * random.uniform();
+            }
+    }
+    Eigen::Vector2d at(double arcPx) const
+    {
+        Eigen::Vector2d out = Eigen::Vector2d::Zero();
+        if (scale_ == 0)
+            return out;
+        for (int axis = 0; axis < 2; ++axis)
+            for (int k = 0; k < kFeatures; ++k)
+                out[axis] += std::cos(omega_[axis][k] * arcPx + phase_[axis][k]);
+        return scale_ * out;
+    }
+
+private:
+    static constexpr int kFeatures = 16;
+    double scale_ = 0;
+    double omega_[2][kFeatures] = {};
+    double phase_[2][kFeatures] = {};
+};
+
 } // namespace
 
 std::map<std::string, std::vector<int>> skinContours(const std::map<std::string, std::vector<int>>& contours, int begin, int end)
@@ -165,6 +200,11 @@ Simulation simulateStrokes(const Mesh& face, const Mesh& meanFace, const std::ma
         fail("simulateStrokes: noise must be a finite number of pixels >= 0, found ", o.noisePx);
     if (!std::isfinite(o.extreme))
         fail("simulateStrokes: extreme factor not finite");
+    if (!(o.wanderPx >= 0) || !std::isfinite(o.wanderPx) || !(o.wanderLengthPx > 0) || !std::isfinite(o.wanderLengthPx))
+        fail("simulateStrokes: wander must be a finite number of pixels >= 0 over a positive length, found ", o.wanderPx, " over ",
+            o.wanderLengthPx);
+    if (!(o.reversed >= 0 && o.reversed <= 1))
+        fail("simulateStrokes: reversed must be a probability in [0, 1], found ", o.reversed);
     if (!flags.empty() && static_cast<Eigen::Index>(flags.size()) != nv)
         fail("simulateStrokes: ", flags.size(), " vertex flags for ", nv, " vertices");
     for (const auto& [name, path] : contours)
@@ -244,6 +284,8 @@ Simulation simulateStrokes(const Mesh& face, const Mesh& meanFace, const std::ma
         features.push_back(std::move(silhouettes[i]));
 
     Random random(o.seed);
+    Random direction(o.seed ^ 0x7265766572736564ULL); // "reversed": its own stream, see simulate.h
+    Random wandering(o.seed ^ 0x77616e646572ULL);     // "wander": likewise
     for (const auto& [name, line, lineVertices] : features) {
         const ArcLength arc(line);
         const double total = arc.total();
@@ -272,10 +314,11 @@ Simulation simulateStrokes(const Mesh& face, const Mesh& meanFace, const std::ma
             }
             s.stroke.view = view;
             s.stroke.surface = Surface::Face;
+            const Wander wander = o.wanderPx > 0 ? Wander(wandering, o.wanderPx, o.wanderLengthPx) : Wander();
             double t = a, drawn = 0;
             Eigen::Vector2d last = arc.at(a);
             while (true) {
-                const Eigen::Vector2d p = arc.at(t);
+                const Eigen::Vector2d p = arc.at(t) + wander.at(t - a);
                 drawn += (p - last).norm();
                 last = p;
                 StrokePoint q;
@@ -286,6 +329,14 @@ Simulation simulateStrokes(const Mesh& face, const Mesh& meanFace, const std::ma
                 if (t >= b)
                     break;
                 t = std::min(b, t + o.spacingPx * (0.5 + random.uniform()));
+            }
+            if (o.reversed > 0 && direction.uniform() < o.reversed) {
+                // The same points drawn from the other end, at the same pen speed.
+                const double duration = *s.stroke.points.back().timeMs;
+                std::reverse(s.stroke.points.begin(), s.stroke.points.end());
+                for (StrokePoint& q : s.stroke.points)
+                    q.timeMs = duration - *q.timeMs;
+                std::reverse(s.vertices.begin(), s.vertices.end());
             }
             if (s.stroke.points.size() >= 2)
                 sim.strokes.push_back(std::move(s));

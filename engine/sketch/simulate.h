@@ -16,8 +16,15 @@
 //   - each piece partial (its ends trimmed by up to `trim` of its length) or overshooting
 //     (extended along its end tangents by up to `overshoot` of its length), each end on its own;
 //   - resampled unevenly: arc-length steps drawn uniformly in [0.5, 1.5] x `spacingPx`;
+//   - wander (`wanderPx`): the whole stroke off the contour by a smooth random offset, as a
+//     hand's error is (a lip line drawn a little high at one end, a jaw line that bows out):
+//     per stroke a Gaussian process in x and y over the arc length, standard deviation
+//     `wanderPx` and correlation length `wanderLengthPx`, sampled by 16 random Fourier
+//     features. Jitter averages out over a contour's vertices; wander does not;
 //   - jitter: every point moved by N(0, noisePx^2) pixels in x and y;
-//   - times at a pen speed of `speedPxPerMs`.
+//   - times at a pen speed of `speedPxPerMs`;
+//   - drawn from the contour's last vertex back to its first with probability `reversed`: a
+//     hand draws a lip or a jaw line either way, and a dataset's contours all run one way.
 // --extreme F (thesis 4.11.2's caricatured strokes): the traced face is mean + F (face - mean),
 // so every stroke is pushed F times as far from the mean face.
 // Deterministic for a seed.
@@ -47,6 +54,10 @@ struct SimulateOptions {
     double minLengthPx = 25; ///< features shorter on screen are not traced
     int silhouettes = 2;     ///< longest silhouette chains traced
     double speedPxPerMs = 0.6;
+    /// Probability that a stroke is drawn backwards (end to start), in [0, 1].
+    double reversed = 0.0;
+    double wanderPx = 0.0;        ///< smooth offset's standard deviation, pixels (0: none)
+    double wanderLengthPx = 60.0; ///< and its correlation length along the stroke, pixels
 };
 
 struct SimulatedStroke {
@@ -69,7 +80,9 @@ struct Simulation {
 /// paths in the face's numbering (a manifest's contours, renumbered to the model); `flags`
 /// VertexFlag bits per vertex (or empty; excluded vertices are never traced). Throws Error for
 /// meshes of different topologies, a non-finite vertex, a non-positive size, spacing or
-/// speed, negative noise, or an extreme factor that is not finite.
+/// speed, negative noise or wander, a non-positive wander length, an extreme factor that is not
+/// finite or a reversed probability outside [0, 1]. `reversed` and the wander draw from their
+/// own random streams: at 0 every other draw is the same as without them.
 Simulation simulateStrokes(const Mesh& face, const Mesh& meanFace, const std::map<std::string, std::vector<int>>& contours,
     const std::vector<std::uint32_t>& flags, const SimulateOptions& options);
 

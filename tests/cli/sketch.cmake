@@ -23,6 +23,16 @@ if(NOT format STREQUAL "facesketch-session" OR NOT model STREQUAL "faces.model" 
   message(FATAL_ERROR "unexpected session: format ${format}, model ${model}, ${strokes} strokes")
 endif()
 
+# The same strokes drawn backwards and wandering off their lines: as many, each from the other end.
+run(strokes simulate ${WORK}/faces --sample face_0055 --view profile --noise 1 --reversed 1 --wander 2 -o ${WORK}/backwards.json)
+file(READ ${WORK}/backwards.json backwards)
+string(JSON back_strokes LENGTH "${backwards}" actions)
+string(JSON forward_x GET "${session}" actions 0 stroke points 0 x)
+string(JSON back_x GET "${backwards}" actions 0 stroke points 0 x)
+if(NOT back_strokes EQUAL strokes OR forward_x STREQUAL back_x)
+  message(FATAL_ERROR "reversed session: ${back_strokes} strokes (forward ${strokes}), first x ${back_x} (forward ${forward_x})")
+endif()
+
 run(sketch ${WORK}/faces.model ${WORK}/faces --session ${WORK}/profile.json -o ${WORK}/face.ply --render ${WORK}/face.png --mapper nearest)
 if(NOT out MATCHES "stroke 0: [0-9]+ points, nearest, [0-9]+ densified, [0-9]+ candidates, [0-9]+ vertices mapped, read [0-9.]+ ms")
   message(FATAL_ERROR "sketch printed: ${out}")
@@ -36,8 +46,14 @@ foreach(f face.ply face.png)
   endif()
 endforeach()
 
-run(eval strokes ${WORK}/faces.model ${WORK}/faces --views front,profile --mappers nearest --max-faces 2 --json ${WORK}/eval.json -q)
+run(eval strokes ${WORK}/faces.model ${WORK}/faces --views front,profile --mappers nearest --max-faces 2 --reversed 0.5 --wander 1
+    --json ${WORK}/eval.json -q)
 file(READ ${WORK}/eval.json eval)
+string(JSON reversed GET "${eval}" reversed)
+string(JSON wander GET "${eval}" wander_px)
+if(NOT reversed EQUAL 0.5 OR NOT wander EQUAL 1)
+  message(FATAL_ERROR "eval strokes JSON: reversed ${reversed}, wander ${wander}")
+endif()
 string(JSON n LENGTH "${eval}" results)
 if(NOT n EQUAL 3)
   message(FATAL_ERROR "expected 3 records (front, profile, all), got ${n}: ${eval}")

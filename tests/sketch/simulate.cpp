@@ -204,6 +204,85 @@ TEST_CASE("simulate: jitter has the asked standard deviation, overshoot leaves t
     REQUIRE(furthest > 2.0);
 }
 
+TEST_CASE("simulate: reversed strokes are the same strokes drawn from the other end")
+{
+    const Inputs& in = inputs();
+    SimulateOptions forward;
+    SimulateOptions backward = forward;
+    backward.reversed = 1.0;
+    const Simulation a = simulateStrokes(in.face, in.mean, in.contours, in.flags, forward);
+    const Simulation b = simulateStrokes(in.face, in.mean, in.contours, in.flags, backward);
+    REQUIRE(a.strokes.size() == b.strokes.size());
+    for (size_t s = 0; s < a.strokes.size(); ++s) {
+        const std::vector<StrokePoint>& p = a.strokes[s].stroke.points;
+        const std::vector<StrokePoint>& q = b.strokes[s].stroke.points;
+        REQUIRE(p.size() == q.size());
+        for (size_t i = 0; i < p.size(); ++i) {
+            REQUIRE(q[i].x == p[p.size() - 1 - i].x);
+            REQUIRE(q[i].y == p[p.size() - 1 - i].y);
+            // Times still start at 0 and grow, at the same pen speed.
+            REQUIRE(*q[i].timeMs == Approx(*p.back().timeMs - *p[p.size() - 1 - i].timeMs));
+            if (i > 0)
+                REQUIRE(*q[i].timeMs >= *q[i - 1].timeMs);
+        }
+        REQUIRE(std::vector<int>(a.strokes[s].vertices.rbegin(), a.strokes[s].vertices.rend()) == b.strokes[s].vertices);
+    }
+
+    // About half of the strokes at 0.5; the other draws (pieces, steps, jitter) stay those of 0.
+    SimulateOptions half = forward;
+    half.reversed = 0.5;
+    const Simulation c = simulateStrokes(in.face, in.mean, in.contours, in.flags, half);
+    REQUIRE(c.strokes.size() == a.strokes.size());
+    int flipped = 0;
+    for (size_t s = 0; s < a.strokes.size(); ++s) {
+        const bool same = c.strokes[s].stroke.points.front().x == a.strokes[s].stroke.points.front().x;
+        const bool reversed = c.strokes[s].stroke.points.front().x == a.strokes[s].stroke.points.back().x;
+        REQUIRE((same || reversed));
+        flipped += !same;
+    }
+    INFO(flipped << " of " << a.strokes.size() << " strokes reversed");
+    REQUIRE(flipped > 0);
+    REQUIRE(flipped < static_cast<int>(a.strokes.size()));
+}
+
+TEST_CASE("simulate: wander moves a stroke off its contour smoothly, by the asked amount")
+{
+    const Inputs& in = inputs();
+    SimulateOptions clean;
+    clean.noisePx = 0;
+    clean.trim = clean.overshoot = 0;
+    SimulateOptions wandering = clean;
+    wandering.wanderPx = 3.0;
+    const Simulation a = simulateStrokes(in.face, in.mean, in.contours, in.flags, clean);
+    const Simulation b = simulateStrokes(in.face, in.mean, in.contours, in.flags, wandering);
+    REQUIRE(a.strokes.size() == b.strokes.size());
+    // The same arc positions are drawn, so points pair up; their offsets are the wander.
+    double sum = 0, steps = 0;
+    int n = 0, m = 0;
+    for (size_t s = 0; s < a.strokes.size(); ++s) {
+        const std::vector<StrokePoint>& p = a.strokes[s].stroke.points;
+        const std::vector<StrokePoint>& q = b.strokes[s].stroke.points;
+        REQUIRE(p.size() == q.size());
+        Eigen::Vector2d previous;
+        for (size_t i = 0; i < p.size(); ++i) {
+            const Eigen::Vector2d d(q[i].x - p[i].x, q[i].y - p[i].y);
+            sum += d.squaredNorm();
+            n += 2;
+            if (i > 0) {
+                steps += (d - previous).squaredNorm();
+                m += 2;
+            }
+            previous = d;
+        }
+    }
+    const double sd = std::sqrt(sum / n), stepSd = std::sqrt(steps / m);
+    INFO(a.strokes.size() << " strokes: offset standard deviation " << sd << " px, between neighbouring points " << stepSd << " px");
+    REQUIRE(sd == Approx(3.0).epsilon(0.25));
+    // Points 6 px apart on a 60 px correlation length: neighbours share nearly all of their
+    // offset (i.i.d. jitter of the same size would differ by sqrt(2) x 3 px).
+    REQUIRE(stepSd < 0.2 * sd);
+}
+
 TEST_CASE("simulate: the profile traces the silhouette and the near side only, extreme exaggerates")
 {
     const Inputs& in = inputs();
@@ -233,6 +312,17 @@ TEST_CASE("simulate: bad input is refused")
     o.extreme = std::numeric_limits<double>::infinity();
     REQUIRE_THROWS_WITH(simulateStrokes(in.face, in.mean, in.contours, in.flags, o), Catch::Contains("extreme"));
     o.extreme = 1;
+    o.reversed = 1.5;
+    REQUIRE_THROWS_WITH(simulateStrokes(in.face, in.mean, in.contours, in.flags, o), Catch::Contains("reversed"));
+    o.reversed = std::nan("");
+    REQUIRE_THROWS_WITH(simulateStrokes(in.face, in.mean, in.contours, in.flags, o), Catch::Contains("reversed"));
+    o.reversed = 0;
+    o.wanderPx = -1;
+    REQUIRE_THROWS_WITH(simulateStrokes(in.face, in.mean, in.contours, in.flags, o), Catch::Contains("wander"));
+    o.wanderPx = 2;
+    o.wanderLengthPx = 0;
+    REQUIRE_THROWS_WITH(simulateStrokes(in.face, in.mean, in.contours, in.flags, o), Catch::Contains("wander"));
+    o.wanderLengthPx = 60;
     auto bad = in.contours;
     bad["lip_upper_outer"].push_back(static_cast<int>(in.face.V.rows()));
     REQUIRE_THROWS_WITH(simulateStrokes(in.face, in.mean, bad, in.flags, o), Catch::Contains("lip_upper_outer"));
