@@ -83,17 +83,23 @@ void benchSketch(const BenchOptions& options, std::ostream& out)
             << " px\n";
 
         sketch::StrokeReader reader(*device, model, d.candidateFaces, d.flags);
-        // The product's reading (the HMM, refined: sketch/refine.h), the HMM's first reading
-        // alone, and the nearest mapper's.
+        // The product's reading (the HMM, refined: sketch/refine.h), the same with passes that
+        // read all of the face's own lines (not anchored), the HMM's first reading alone, and
+        // the nearest mapper's.
         struct Variant {
             sketch::MapperKind kind;
             int passes;
+            int anchorRings;
             const char* suffix;
         };
-        for (const Variant& variant : { Variant { sketch::MapperKind::Hmm, sketch::RefineOptions {}.passes, "" },
-                 Variant { sketch::MapperKind::Hmm, 0, "_unrefined" }, Variant { sketch::MapperKind::Nearest, 0, "_nearest" } }) {
+        const sketch::RefineOptions product;
+        for (const Variant& variant : { Variant { sketch::MapperKind::Hmm, product.passes, product.anchorRings, "" },
+                 Variant { sketch::MapperKind::Hmm, product.passes, -1, "_free" },
+                 Variant { sketch::MapperKind::Hmm, 0, product.anchorRings, "_unrefined" },
+                 Variant { sketch::MapperKind::Nearest, 0, product.anchorRings, "_nearest" } }) {
             sketch::RefineOptions refine;
             refine.passes = variant.passes;
+            refine.anchorRings = variant.anchorRings;
             std::vector<double> total, load, candidates, mapping, rebuild;
             int passes = 0;
             // One untimed run warms the caches and the GPU pipelines.

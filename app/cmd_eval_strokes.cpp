@@ -27,6 +27,7 @@ struct EvalStrokesCommand {
     double noise = 1.0, extreme = 1.0, errorScale = 10.0, reversed = 0.0, wander = 0.0, wanderLength = 60.0;
     int size = 1024, renders = 2, maxFaces = 0, similarFaces = sketch::MapperParams {}.similarFaces, rereads = -1;
     int refine = sketch::RefineOptions {}.passes;
+    int refineAnchor = sketch::RefineOptions {}.anchorRings;
     std::string refineMapper = "simple";
     std::uint64_t seed = 1;
     bool noCorrelation = false, quiet = false, noProject = false, ownContours = false, thesisObservations = false;
@@ -123,6 +124,7 @@ void runEvalStrokes(const EvalStrokesCommand& c)
         sketch::setMapperParam(o.params, assignment);
     o.refine.passes = c.refine;
     o.refine.mapper = c.refineMapper == "same" ? std::nullopt : std::optional(sketch::parseMapper(c.refineMapper));
+    o.refine.anchorRings = c.refineAnchor;
     if (c.rereads >= 0) {
         // The older spelling: passes of the first reading's own mapper.
         o.refine.passes = c.rereads;
@@ -158,7 +160,8 @@ void runEvalStrokes(const EvalStrokesCommand& c)
             { "robust_k", c.robustK }, { "project_onto_face_space", !c.noProject }, { "view_plane_only", o.params.viewPlaneOnly },
             { "own_contours", c.ownContours }, { "across_stroke", o.params.acrossStrokeOnly }, { "similar_faces", c.similarFaces },
             { "refine_passes", o.refine.passes }, { "refine_mapper", o.refine.mapper ? sketch::mapperName(*o.refine.mapper) : "same" },
-            { "mapper_params", c.mapperParams }, { "oracle", c.oracle }, { "faces", c.faces }, { "results", records } };
+            { "refine_anchor_rings", o.refine.anchorRings }, { "mapper_params", c.mapperParams }, { "oracle", c.oracle },
+            { "faces", c.faces }, { "results", records } };
         writeFileAtomically(c.json, [&](std::ostream& out) { out << doc.dump(1) << "\n"; });
         std::cout << "wrote " << c.json << "\n";
     }
@@ -251,6 +254,11 @@ void addEvalStrokesCommand(CLI::App& eval)
                                 "Mapper of the refinement passes: nearest, heuristic, hmm, simple, or same (the first reading's)")
                              ->capture_default_str()
                              ->check(CLI::IsMember({ "nearest", "heuristic", "hmm", "simple", "same" }));
+    cmd->add_option("--refine-anchor", c->refineAnchor,
+           "The passes read the face's own lines only within this many rings of the first reading's vertices (silhouettes "
+           "anywhere; -1: all)")
+        ->capture_default_str()
+        ->check(CLI::Range(-1, 4));
     cmd->add_option("--rereads", c->rereads, "The older spelling of --refine N --refine-mapper same")
         ->check(CLI::Range(0, 16))
         ->excludes(refine)

@@ -219,11 +219,19 @@ StrokeReader::StrokeReader(
 
 StrokeReader::~StrokeReader() = default;
 
-StrokeReading StrokeReader::read(const Stroke& stroke, const Mesh& currentFace, MapperKind kind, const MapperParams& params)
+StrokeReading StrokeReader::read(
+    const Stroke& stroke, const Mesh& currentFace, MapperKind kind, const MapperParams& params, const ReadAnchor* anchor)
 {
     validateStroke(stroke, "stroke");
     params.validate();
     const Eigen::Index nv = model_.vertexCount();
+    if (anchor) {
+        if (anchor->rings < 0 || anchor->rings > impl_->rings.rings())
+            fail("stroke: anchor rings ", anchor->rings, " not in [0, ", impl_->rings.rings(), "]");
+        for (std::uint32_t v : anchor->vertices)
+            if (v >= static_cast<std::uint64_t>(nv))
+                fail("stroke: anchor vertex ", v, " outside the face's ", nv, " vertices");
+    }
     if (currentFace.V.rows() != nv || currentFace.F.rows() != model_.triangles.rows())
         fail("stroke: the current face has ", currentFace.V.rows(), " vertices and ", currentFace.F.rows(), " triangles; the model has ",
             nv, " and ", model_.triangles.rows());
@@ -263,7 +271,19 @@ StrokeReading StrokeReader::read(const Stroke& stroke, const Mesh& currentFace, 
             impl_->ownCurvature->setPositions(meshMajorPositions({ currentFace }));
             impl_->ownCurvature->run();
         }
-        return impl_->ownCloud->build(camera, contour);
+        std::vector<Candidate> own = impl_->ownCloud->build(camera, contour);
+        if (anchor)
+            own.erase(std::remove_if(own.begin(), own.end(),
+                          [&](const Candidate& c) {
+                              if (c.types & ContourSilhouette)
+                                  return false;
+                              for (std::uint32_t a : anchor->vertices)
+                                  if (const int h = impl_->rings.hops(a, c.vertex); h >= 0 && h <= anchor->rings)
+                                      return false;
+                              return true;
+                          }),
+                own.end());
+        return own;
     };
     std::vector<Candidate> cloud;
     if (kind == MapperKind::Simple) {

@@ -173,6 +173,17 @@ struct MapperParams {
 /// value's range is checked by validate() when the parameters are used.
 void setMapperParam(MapperParams& params, const std::string& assignment);
 
+/// Where the current face's own contour candidates may lie (StrokeReader::read): labelled and
+/// suggestive ones within `rings` rings (at most the reader's 4) of one of `vertices`; silhouette
+/// candidates anywhere, since a silhouette slides over the surface as the face changes. The
+/// refinement passes keep to the lines the first reading chose with it (sketch/refine.h): a
+/// stroke that runs between two of the face's own lines (an upper lip's border and the lips'
+/// meeting line) is not handed to the nearer one point by point.
+struct ReadAnchor {
+    std::vector<std::uint32_t> vertices;
+    int rings = 2;
+};
+
 /// One per (model, candidate faces); reused for every stroke. Holds the candidate faces'
 /// curvature on the GPU (computed once here, as the thesis' offline pass) and the k-ring map.
 class StrokeReader {
@@ -191,8 +202,12 @@ public:
     /// coordinate, a bad view (validateStroke), a face of another topology, a plane seen
     /// edge-on. A stroke that can be read but pins nothing (off screen, over empty background,
     /// a single point with no candidate) returns a reading with no observations and says why
-    /// in StrokeReading::message. Never changes any state the caller owns.
-    StrokeReading read(const Stroke& stroke, const Mesh& currentFace, MapperKind kind, const MapperParams& params = {});
+    /// in StrokeReading::message. Never changes any state the caller owns. `anchor`, if given,
+    /// limits the current face's own contour candidates (the simple mapper's, and
+    /// MapperParams::ownContours'); Error for its rings outside [0, 4] or a vertex outside the
+    /// face.
+    StrokeReading read(const Stroke& stroke, const Mesh& currentFace, MapperKind kind, const MapperParams& params = {},
+        const ReadAnchor* anchor = nullptr);
 
     struct Timing {
         double candidatesMs = 0; ///< projection, GPU cloud and per-point sets

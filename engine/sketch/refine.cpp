@@ -9,6 +9,8 @@ void RefineOptions::validate() const
 {
     if (passes < 0 || passes > 16)
         fail("refinement: ", passes, " passes is not in [0, 16]");
+    if (anchorRings < -1 || anchorRings > 4)
+        fail("refinement: anchor rings ", anchorRings, " not in [-1, 4]");
 }
 
 namespace {
@@ -16,10 +18,10 @@ namespace {
 // One reading of the stroke against the tracking model's face, timed into `out`, given to the
 // hook when it pins anything.
 StrokeReading timedRead(StrokeReader& reader, const TrackingModel& tracking, const Stroke& stroke, MapperKind kind,
-    const MapperParams& params, const ReadingHook& hook, ReadResult& out)
+    const MapperParams& params, const ReadingHook& hook, ReadResult& out, const ReadAnchor* anchor = nullptr)
 {
     Stopwatch clock;
-    StrokeReading r = reader.read(stroke, tracking.faceMesh(), kind, params);
+    StrokeReading r = reader.read(stroke, tracking.faceMesh(), kind, params, anchor);
     out.readMs += clock.milliseconds();
     out.timing.candidatesMs += reader.lastTiming().candidatesMs;
     out.timing.mappingMs += reader.lastTiming().mappingMs;
@@ -43,10 +45,14 @@ ReadResult applyAndRefine(StrokeReader& reader, TrackingModel& tracking, const S
     out.applyMs += clock.milliseconds();
 
     const MapperKind again = refine.mapper.value_or(kind);
+    ReadAnchor anchor;
+    anchor.rings = refine.anchorRings;
+    for (const VertexObservation& o : out.reading.observations)
+        anchor.vertices.push_back(o.vertex);
     for (int pass = 0; pass < refine.passes; ++pass) {
         StrokeReading next;
         try {
-            next = timedRead(reader, tracking, stroke, again, params, hook, out);
+            next = timedRead(reader, tracking, stroke, again, params, hook, out, refine.anchorRings >= 0 ? &anchor : nullptr);
         } catch (const Error&) {
             break; // the previous reading stays applied
         }

@@ -4,6 +4,7 @@
 #include "fixture.h"
 #include "geometry/graph.h"
 #include "sketch/mappers.h"
+#include "sketch/simulate.h"
 #include "test_common.h"
 
 #include <algorithm>
@@ -279,6 +280,79 @@ TEST_CASE("mapper: bad strokes are refused by name and odd ones give well-define
     }
     // The caller's face is untouched.
     REQUIRE(w.mean.V == before.V);
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("mapper: an anchor keeps the face's own lines to those near its vertices, silhouettes anywhere")
+{
+    const test::SketchWorld& w = test::sketchWorld();
+    StrokeReader reader(test::device(), w.model, w.candidateFaces, w.flags);
+    const RingDistances rings(w.model.triangles, w.model.vertexCount(), 4);
+    const std::vector<int>& lip = w.contours.at("lip_upper_outer");
+    const Stroke stroke = traceOf(w.mean, lip);
+    const StrokeReading free = reader.read(stroke, w.mean, MapperKind::Simple);
+    REQUIRE_FALSE(free.observations.empty());
+
+    // Anchored to the lip's own vertices: every own-line candidate within 1 ring of the lip.
+    ReadAnchor onLip;
+    onLip.rings = 1;
+    onLip.vertices.assign(lip.begin(), lip.end());
+    const StrokeReading held = reader.read(stroke, w.mean, MapperKind::Simple, {}, &onLip);
+    checkWellFormed(held, w.model.vertexCount());
+    const auto [nearShare, covered] = overlap(held, lip, rings, 1);
+    INFO("anchored: " << held.observations.size() << " vertices, " << nearShare << " within one ring, " << covered << " of the lip");
+    CHECK(nearShare >= 0.9); // some may be silhouette vertices, which no anchor holds
+    CHECK(covered >= 0.5);
+    long countFree = 0, countHeld = 0, countFar = 0;
+    for (std::size_t i = 0; i < free.candidateCounts.size(); ++i) {
+        countFree += free.candidateCounts[i];
+        countHeld += held.candidateCounts[i];
+    }
+    CHECK(countHeld < countFree);
+
+    // Anchored to a brow, far from the stroke: none of the lip's lines is in reach, so what
+    // stays is what an anchor of no vertices keeps: the silhouettes only.
+    const std::vector<int>& brow = w.contours.at("eyebrow_l");
+    ReadAnchor far;
+    far.rings = 2;
+    far.vertices.assign(brow.begin(), brow.end());
+    const StrokeReading none = reader.read(stroke, w.mean, MapperKind::Simple, {}, &far);
+    const ReadAnchor nothing;
+    const StrokeReading silhouettes = reader.read(stroke, w.mean, MapperKind::Simple, {}, &nothing);
+    long countNothing = 0;
+    for (std::size_t i = 0; i < none.candidateCounts.size(); ++i) {
+        countFar += none.candidateCounts[i];
+        countNothing += silhouettes.candidateCounts[i];
+    }
+    CHECK(countFar == countNothing);
+    CHECK(countFar < countHeld);
+    CHECK(none.chosen == silhouettes.chosen);
+    // Silhouettes stay whatever the anchor: the profile's silhouette stroke reads with none.
+    SimulateOptions profile;
+    profile.angles = { 90, 0 };
+    profile.noisePx = 0;
+    const Simulation sim = simulateStrokes(w.mean, w.mean, w.contours, w.flags, profile);
+    const auto silhouette
+        = std::find_if(sim.strokes.begin(), sim.strokes.end(), [](const SimulatedStroke& s) { return s.feature == "silhouette"; });
+    REQUIRE(silhouette != sim.strokes.end());
+    const Stroke& side = silhouette->stroke;
+    const StrokeReading sideFree = reader.read(side, w.mean, MapperKind::Simple);
+    const StrokeReading sideHeld = reader.read(side, w.mean, MapperKind::Simple, {}, &nothing);
+    INFO("profile silhouette: " << sideFree.observations.size() << " vertices free, " << sideHeld.observations.size()
+                                << " anchored to none");
+    CHECK(sideHeld.observations.size() * 2 >= sideFree.observations.size());
+
+    // The training faces' cloud is not anchored: the HMM reads the same with or without.
+    const StrokeReading hmm = reader.read(stroke, w.mean, MapperKind::Hmm);
+    const StrokeReading hmmFar = reader.read(stroke, w.mean, MapperKind::Hmm, {}, &far);
+    CHECK(hmm.chosen == hmmFar.chosen);
+
+    ReadAnchor bad;
+    bad.rings = 5;
+    REQUIRE_THROWS_WITH(reader.read(stroke, w.mean, MapperKind::Simple, {}, &bad), Catch::Contains("anchor rings 5"));
+    bad.rings = 1;
+    bad.vertices = { static_cast<std::uint32_t>(w.model.vertexCount()) };
+    REQUIRE_THROWS_WITH(reader.read(stroke, w.mean, MapperKind::Simple, {}, &bad), Catch::Contains("anchor vertex"));
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
 
