@@ -200,10 +200,12 @@ Simulation simulateStrokes(const Mesh& face, const Mesh& meanFace, const std::ma
         fail("simulateStrokes: noise must be a finite number of pixels >= 0, found ", o.noisePx);
     if (!std::isfinite(o.extreme))
         fail("simulateStrokes: extreme factor not finite");
-    if (!(o.wanderPx >= 0) || !std::isfinite(o.wanderPx) || !(o.wanderLengthPx > 0) || !std::isfinite(o.wanderLengthPx))
+    // isfinite first: an ordered comparison with NaN raises FE_INVALID, which the sanitizer
+    // build traps.
+    if (!std::isfinite(o.wanderPx) || o.wanderPx < 0 || !std::isfinite(o.wanderLengthPx) || o.wanderLengthPx <= 0)
         fail("simulateStrokes: wander must be a finite number of pixels >= 0 over a positive length, found ", o.wanderPx, " over ",
             o.wanderLengthPx);
-    if (!(o.reversed >= 0 && o.reversed <= 1))
+    if (!std::isfinite(o.reversed) || o.reversed < 0 || o.reversed > 1)
         fail("simulateStrokes: reversed must be a probability in [0, 1], found ", o.reversed);
     if (!flags.empty() && static_cast<Eigen::Index>(flags.size()) != nv)
         fail("simulateStrokes: ", flags.size(), " vertex flags for ", nv, " vertices");
