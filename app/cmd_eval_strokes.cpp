@@ -24,7 +24,8 @@ namespace {
 
 struct EvalStrokesCommand {
     std::string model, dataset, json, output, views = "front,profile,34", mappers = "nearest,heuristic,hmm,simple";
-    double noise = 1.0, extreme = 1.0, errorScale = 10.0, reversed = 0.0, wander = 0.0, wanderLength = 60.0;
+    double errorScale = 10.0;
+    sketch::SimulateOptions style; ///< how the simulated hand draws (addStrokeStyleOptions)
     int size = 1024, renders = 2, maxFaces = 0, similarFaces = sketch::MapperParams {}.similarFaces, rereads = -1;
     int refine = sketch::RefineOptions {}.passes;
     int refineAnchor = sketch::RefineOptions {}.anchorRings;
@@ -102,11 +103,7 @@ void runEvalStrokes(const EvalStrokesCommand& c)
     evaluation::StrokeEvalOptions o;
     o.views = parseViewList(c.views);
     o.mappers = parseMappers(c.mappers);
-    o.simulate.noisePx = c.noise;
-    o.simulate.extreme = c.extreme;
-    o.simulate.reversed = c.reversed;
-    o.simulate.wanderPx = c.wander;
-    o.simulate.wanderLengthPx = c.wanderLength;
+    o.simulate = c.style;
     o.simulate.imageSize = c.size;
     o.simulate.seed = c.seed;
     o.correlation = !c.noCorrelation;
@@ -138,8 +135,9 @@ void runEvalStrokes(const EvalStrokesCommand& c)
     gpu::ScopedDevice device;
     const evaluation::StrokeEvalResult result = evaluation::evaluateStrokes(*device, data, o);
     std::cout << "# " << data.testFaces.size() << " test faces of " << c.dataset << ", cloud of " << data.candidateFaces.size()
-              << " faces, " << m.vertexCount() << " skin vertices, noise " << c.noise << " px, extreme " << c.extreme << ", reversed "
-              << c.reversed << ", wander " << c.wander << " px over " << c.wanderLength << " px, " << clock.seconds() << " s\n";
+              << " faces, " << m.vertexCount() << " skin vertices, noise " << c.style.noisePx << " px, extreme " << c.style.extreme
+              << ", reversed " << c.style.reversed << ", wander " << c.style.wanderPx << " px over " << c.style.wanderLengthPx << " px, "
+              << clock.seconds() << " s\n";
     printRecords(result.records);
     for (const std::string& note : result.notes)
         std::cout << "# refused: " << note << "\n";
@@ -154,12 +152,13 @@ void runEvalStrokes(const EvalStrokesCommand& c)
                 { "plane_mm", r.planeMm }, { "depth_mm", r.depthMm }, { "across_mm", r.acrossMm }, { "within_1mm", r.within1Mm },
                 { "within_3mm", r.within3Mm }, { "misread_strokes", r.misread } });
         const nlohmann::json doc { { "model", c.model }, { "dataset", c.dataset }, { "vertices", m.vertexCount() },
-            { "image_size", c.size }, { "seed", c.seed }, { "reversed", c.reversed }, { "wander_px", c.wander },
-            { "wander_length_px", c.wanderLength }, { "correlation", !c.noCorrelation }, { "supersede_radius_mm", c.supersedeRadius },
-            { "plane_noise_mm", c.planeNoise }, { "depth_noise_mm", c.depthNoise }, { "robust_passes", c.robustPasses },
-            { "robust_k", c.robustK }, { "project_onto_face_space", !c.noProject }, { "view_plane_only", o.params.viewPlaneOnly },
-            { "own_contours", c.ownContours }, { "across_stroke", o.params.acrossStrokeOnly }, { "similar_faces", c.similarFaces },
-            { "refine_passes", o.refine.passes }, { "refine_mapper", o.refine.mapper ? sketch::mapperName(*o.refine.mapper) : "same" },
+            { "image_size", c.size }, { "seed", c.seed }, { "reversed", c.style.reversed }, { "wander_px", c.style.wanderPx },
+            { "wander_length_px", c.style.wanderLengthPx }, { "correlation", !c.noCorrelation },
+            { "supersede_radius_mm", c.supersedeRadius }, { "plane_noise_mm", c.planeNoise }, { "depth_noise_mm", c.depthNoise },
+            { "robust_passes", c.robustPasses }, { "robust_k", c.robustK }, { "project_onto_face_space", !c.noProject },
+            { "view_plane_only", o.params.viewPlaneOnly }, { "own_contours", c.ownContours },
+            { "across_stroke", o.params.acrossStrokeOnly }, { "similar_faces", c.similarFaces }, { "refine_passes", o.refine.passes },
+            { "refine_mapper", o.refine.mapper ? sketch::mapperName(*o.refine.mapper) : "same" },
             { "refine_anchor_rings", o.refine.anchorRings }, { "mapper_params", c.mapperParams }, { "oracle", c.oracle },
             { "faces", c.faces }, { "results", records } };
         writeFileAtomically(c.json, [&](std::ostream& out) { out << doc.dump(1) << "\n"; });
@@ -200,21 +199,7 @@ void addEvalStrokesCommand(CLI::App& eval)
     cmd->add_option("dataset", c->dataset, "The dataset it was trained on (its test faces are sketched)")->required();
     cmd->add_option("--views", c->views, "Views separated by ',' or ';': front, profile, 34 or AZ,EL")->capture_default_str();
     cmd->add_option("--mappers", c->mappers, "Mappers separated by ','")->capture_default_str();
-    cmd->add_option("--noise", c->noise, "Jitter of the simulated strokes, pixels (standard deviation)")
-        ->capture_default_str()
-        ->check(CLI::Range(0.0, 100.0));
-    cmd->add_option("--extreme", c->extreme, "Exaggerate the traced faces away from the mean face by this factor")
-        ->capture_default_str()
-        ->check(CLI::Range(-10.0, 10.0));
-    cmd->add_option("--reversed", c->reversed, "Probability that a simulated stroke is drawn from its contour's end back to its start")
-        ->capture_default_str()
-        ->check(CLI::Range(0.0, 1.0));
-    cmd->add_option("--wander", c->wander, "Smooth random offset of each stroke from its contour, pixels (standard deviation)")
-        ->capture_default_str()
-        ->check(CLI::Range(0.0, 100.0));
-    cmd->add_option("--wander-length", c->wanderLength, "Correlation length of that offset along the stroke, pixels")
-        ->capture_default_str()
-        ->check(CLI::Range(1.0, 10000.0));
+    addStrokeStyleOptions(cmd, c->style);
     cmd->add_option("--size", c->size, "Viewport size of the strokes, pixels")->capture_default_str()->check(CLI::Range(64, 8192));
     cmd->add_option("--seed", c->seed, "Seed of the simulated strokes")->capture_default_str();
     cmd->add_option("--faces", c->faces,

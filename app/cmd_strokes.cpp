@@ -17,7 +17,7 @@ namespace {
 
 struct SimulateCommand {
     std::string dataset, sample, view = "front", output, model, mapper = "hmm";
-    double noise = 1.0, extreme = 1.0, reversed = 0.0, wander = 0.0, wanderLength = 60.0;
+    sketch::SimulateOptions style; ///< how the hand draws (addStrokeStyleOptions)
     int size = 1024;
     std::uint64_t seed = 1;
     bool symmetry = false;
@@ -52,14 +52,9 @@ void runSimulate(const SimulateCommand& c)
         fail(c.dataset, ": no `train` samples to take the mean face from");
     mean.V /= static_cast<double>(d.trainNames.size());
 
-    sketch::SimulateOptions o;
+    sketch::SimulateOptions o = c.style;
     o.angles = angles;
     o.imageSize = c.size;
-    o.noisePx = c.noise;
-    o.extreme = c.extreme;
-    o.reversed = c.reversed;
-    o.wanderPx = c.wander;
-    o.wanderLengthPx = c.wanderLength;
     o.seed = c.seed;
     const sketch::Simulation sim = sketch::simulateStrokes(face, mean, d.contours, d.flags, o);
     if (sim.strokes.empty())
@@ -89,7 +84,8 @@ void runSimulate(const SimulateCommand& c)
     }
     sketch::saveSession(c.output, session);
     std::cout << "wrote " << c.output << ": " << session.actions.size() << " strokes, " << points << " points, view " << c.view << " ("
-              << angles.azimuthDeg << ", " << angles.elevationDeg << "), noise " << c.noise << " px, extreme " << c.extreme << "\n";
+              << angles.azimuthDeg << ", " << angles.elevationDeg << "), noise " << c.style.noisePx << " px, extreme " << c.style.extreme
+              << "\n";
     for (const auto& [feature, n] : perFeature)
         std::cout << "  " << feature << ": " << n << " strokes\n";
 }
@@ -109,19 +105,7 @@ void addStrokesCommand(CLI::App& root)
     cmd->add_option("--sample", c->sample, "Name of the sample to trace")->required();
     cmd->add_option("--view", c->view, "front, profile, 34 or AZ,EL")->capture_default_str();
     cmd->add_option("-o,--output", c->output, "Session file to write")->required();
-    cmd->add_option("--noise", c->noise, "Jitter, pixels (standard deviation)")->capture_default_str()->check(CLI::Range(0.0, 100.0));
-    cmd->add_option("--extreme", c->extreme, "Exaggerate the face away from the mean face by this factor")
-        ->capture_default_str()
-        ->check(CLI::Range(-10.0, 10.0));
-    cmd->add_option("--reversed", c->reversed, "Probability that a stroke is drawn from its contour's end back to its start")
-        ->capture_default_str()
-        ->check(CLI::Range(0.0, 1.0));
-    cmd->add_option("--wander", c->wander, "Smooth random offset of each stroke from its contour, pixels (standard deviation)")
-        ->capture_default_str()
-        ->check(CLI::Range(0.0, 100.0));
-    cmd->add_option("--wander-length", c->wanderLength, "Correlation length of that offset along the stroke, pixels")
-        ->capture_default_str()
-        ->check(CLI::Range(1.0, 10000.0));
+    addStrokeStyleOptions(cmd, c->style);
     cmd->add_option("--size", c->size, "Viewport size, pixels")->capture_default_str()->check(CLI::Range(64, 8192));
     cmd->add_option("--seed", c->seed, "Seed")->capture_default_str();
     cmd->add_option("--model", c->model, "Model file the session names (default: DATASET.model)");

@@ -82,4 +82,23 @@ std::vector<std::pair<std::string, ViewAngles>> parseViewList(const std::string&
     return views;
 }
 
+void addStrokeStyleOptions(CLI::App* cmd, sketch::SimulateOptions& style)
+{
+    cmd->add_option("--noise", style.noisePx, "Jitter of the simulated strokes, pixels (standard deviation)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 100.0));
+    cmd->add_option("--extreme", style.extreme, "Exaggerate the traced faces away from the mean face by this factor")
+        ->capture_default_str()
+        ->check(CLI::Range(-10.0, 10.0));
+    cmd->add_option("--reversed", style.reversed, "Probability that a stroke is drawn from its contour's end back to its start")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1.0));
+    cmd->add_option("--wander", style.wanderPx, "Smooth random offset of each stroke from its contour, pixels (standard deviation)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 100.0));
+    cmd->add_option("--wander-length", style.wanderLengthPx, "Correlation length of that offset along the stroke, pixels")
+        ->capture_default_str()
+        ->check(CLI::Range(1.0, 10000.0));
+}
+
 } // namespace facesketch::app

@@ -1,11 +1,14 @@
 #pragma once
-// What `facesketch sketch`, `eval strokes`, `strokes simulate` and `bench sketch` load from a
-// model and its dataset: everything on the model's (skin) topology.
+// What `facesketch sketch`, `eval strokes`, `strokes simulate` and `bench sketch` share: what
+// they load from a model and its dataset (everything on the model's skin topology), and the
+// options that say how simulated strokes are drawn.
 
 #include "dataset/dataset.h"
 #include "geometry/camera.h"
+#include "sketch/simulate.h"
 #include "stats/face_model.h"
 
+#include <CLI/CLI.hpp>
 #include <map>
 #include <string>
 #include <vector>
@@ -37,5 +40,10 @@ Mesh meanMesh(const stats::FaceModel& model);
 /// "front,profile,34" or "front;profile;AZ,EL": views by name; two numbers in a row are one
 /// AZ,EL view, a lone number ("34") a name. Throws Error naming a view parseView rejects.
 std::vector<std::pair<std::string, ViewAngles>> parseViewList(const std::string& text);
+
+/// Declares on `cmd` the options of how a simulated hand draws, bound to `style`'s fields:
+/// --noise, --extreme, --reversed, --wander and --wander-length (the same names, ranges and
+/// defaults for `strokes simulate` and `eval strokes`).
+void addStrokeStyleOptions(CLI::App* cmd, sketch::SimulateOptions& style);
 
 } // namespace facesketch::app
