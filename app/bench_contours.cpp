@@ -171,6 +171,23 @@ void benchContours(const BenchOptions& options, std::ostream& out)
         out << "candidates_gpu_with_readback_" << tag << "_ms " << median(fullWall) << " ms\n";
         out << "candidates_gpu_stroke_box_" << tag << "_ms " << median(culled) << " ms\n";
         out << "candidates_gpu_stroke_box_with_listing_and_readback_" << tag << "_ms " << median(culledWall) << " ms\n";
+        // rtsc's filter (the test at the crossing reads both ends' shapes in pass 2).
+        ContourParams rtsc = params, rtscStroke = stroke;
+        rtsc.suggestiveFilter = rtscStroke.suggestiveFilter = SuggestiveFilter::RtscCrossing;
+        std::vector<double> rtscFull, rtscCulled;
+        size_t rtscCount = 0;
+        for (int r = 0; r < options.repeat + 1; ++r) {
+            double gpuMs = 0;
+            rtscCount = cloud.build(camera, rtsc, &gpuMs).size();
+            if (r > 0)
+                rtscFull.push_back(gpuMs);
+            cloud.build(camera, rtscStroke, &gpuMs);
+            if (r > 0)
+                rtscCulled.push_back(gpuMs);
+        }
+        out << "candidates_gpu_rtsc_" << tag << "_ms " << median(rtscFull) << " ms\n";
+        out << "candidates_gpu_rtsc_stroke_box_" << tag << "_ms " << median(rtscCulled) << " ms\n";
+        out << "candidates_count_rtsc_" << tag << " " << rtscCount << " points\n";
         out << "candidates_count_" << tag << " " << count << " points\n";
         out << "candidates_stroke_box_count_" << tag << " " << strokeCount << " points\n";
         if (!options.pass1.empty() || !options.pass2.empty())

@@ -89,6 +89,10 @@ void addContoursCommand(CLI::App& root)
     cmd->add_option("--size", o->size, "Image width and height in pixels")->capture_default_str()->check(CLI::Range(64, 8192));
     cmd->add_option("--faces", o->maxFaces, "At most this many faces in the cloud")->capture_default_str()->check(CLI::Range(1, 100000));
     cmd->add_option("--suggestive", o->suggestive, "Suggestive contour threshold on D_w k_r l^2")->capture_default_str();
+    cmd->add_option("--rtsc", o->rtsc,
+           "Suggestive contours by rtsc's filter instead, with this threshold on tan(theta) D_w k_r l^2 at the zero crossing (rtsc: "
+           "0.01)")
+        ->check(CLI::Range(0.0, 1e6));
     cmd->add_option("--silhouette", o->silhouette, "Silhouette threshold on |n.v| (default: 0.14 sqrt(863 / #V))");
     cmd->add_flag("--perspective", o->perspective, "Perspective instead of orthographic projection");
     cmd->add_flag("--no-cache", o->noCache,
@@ -110,6 +114,10 @@ void writeContourPictures(const ContourPictureOptions& options)
         ContourParams params;
         params.silhouetteThreshold = o->silhouette >= 0 ? o->silhouette : defaultSilhouetteThreshold(nv);
         params.suggestiveThreshold = o->suggestive;
+        if (o->rtsc >= 0) {
+            params.suggestiveFilter = SuggestiveFilter::RtscCrossing;
+            params.rtscThreshold = o->rtsc;
+        }
         params.featureSize = meanEdgeLength(faces.shown);
         std::cout << "loaded " << faces.meshes.size() << " faces of " << nv << " vertices in " << clock.seconds() << " s\n";
 
@@ -133,7 +141,10 @@ void writeContourPictures(const ContourPictureOptions& options)
                 cloud = candidates.build(camera, params, &cloudMs);
                 std::cout << "curvature of " << faces.meshes.size() << " faces: " << pass.milliseconds << " ms "
                           << (pass.restored ? "to read " + pass.file.string() : "on " + std::string(device.name)) << "; cloud of "
-                          << cloud.size() << " candidates: " << cloudMs << " ms\n";
+                          << cloud.size() << " candidates ("
+                          << std::count_if(
+                                 cloud.begin(), cloud.end(), [](const Candidate& c) { return (c.types & ContourSuggestive) != 0; })
+                          << " suggestive): " << cloudMs << " ms\n";
             }
             Renderer r(device, o->size, o->size, 4);
             const std::string prefix = o->output;

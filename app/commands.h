@@ -49,6 +49,7 @@ struct ContourPictureOptions {
     int size = 1024;
     int maxFaces = 230;
     double suggestive = ContourParams {}.suggestiveThreshold;
+    double rtsc = -1;       ///< >= 0: suggestive contours by rtsc's filter with this threshold instead
     double silhouette = -1; ///< negative: the resolution-dependent default
     bool perspective = false;
     bool noCache = false; ///< compute the curvature even if a cache file holds it

@@ -3,7 +3,8 @@
 #extension GL_KHR_shader_subgroup_ballot : require
 // Pass 2 of the per-view contour tests (engine/contours/candidates.h): for every (mesh, vertex)
 // that pass 1 (contours_radial.comp.glsl) listed as having passed a test, the suggestive
-// zero-crossing test against its one-ring's radial words, culling to the view's rectangle and
+// zero-crossing test against its one-ring's radial words (compiled with CONTOURS_RTSC, as
+// contours_rtsc_comp, also rtsc's filter at the crossing from both ends' shapes), culling to the view's rectangle and
 // sphere, then the candidate appended with an atomic counter. Dispatched indirectly, with the
 // size pass 1 wrote.
 #include "shared.h"
@@ -11,11 +12,28 @@
 layout(local_size_x = CONTOURS_GROUP_PAIRS, local_size_y = 1, local_size_z = 1) in;
 
 layout(binding = CONTOURS_BINDING_POSITIONS) uniform samplerBuffer positions;
+layout(binding = CONTOURS_BINDING_SHAPE) uniform usamplerBuffer shapes;
+layout(binding = CONTOURS_BINDING_SHAPE_C23) uniform usamplerBuffer shapesC23;
 layout(binding = CONTOURS_BINDING_RADIAL) uniform usamplerBuffer radial;
 layout(binding = CONTOURS_BINDING_NEIGHBOUR_OFFSETS) uniform usamplerBuffer neighbourOffsets;
 layout(binding = CONTOURS_BINDING_NEIGHBOURS) uniform usamplerBuffer neighbours;
 layout(binding = CONTOURS_BINDING_WORK_TEXELS) uniform usamplerBuffer work;
 #include "contours_view.glsl"
+#include "octahedral.glsl"
+#include "contours_shape.glsl"
+
+#ifdef CONTOURS_RTSC
+// rtsc's suggestive filter at one end of an edge (contours/candidates.h, SuggestiveFilter): the
+// numerator l^2 rtscNumerator - threshold n.v of tan(theta) D_w k_r l^2 - threshold, and its
+// denominator n.v; both interpolate linearly to the edge's zero crossing of k_r.
+vec2 rtscEnd(int index)
+{
+    ViewedShape v = viewedShape(index);
+    float torsion = (v.k.y - v.k.x) * v.u * v.t / v.s2;
+    float numerator = sqrt(v.s2) * cwww(v) - 2.0 * v.ndotv * torsion * torsion;
+    return vec2(thresholds.z * numerator - thresholds.w * v.ndotv, v.ndotv);
+}
+#endif
 
 struct Candidate { CONTOURS_CANDIDATE_MEMBERS };
 layout(binding = CONTOURS_BINDING_OUTPUT, std430) buffer Output {
@@ -46,8 +64,16 @@ void main()
         float b = uintBitsToFloat(other & ~CONTOURS_STATE_MASK);
         bool crossing = other != CONTOURS_NO_RADIAL && (a < 0.0) != (b < 0.0);
         bool nearer = abs(a) < abs(b) || (abs(a) == abs(b) && v < u);
+#ifdef CONTOURS_RTSC
+        if (crossing && nearer) { // rtsc's filter, at the crossing
+            vec2 at = mix(rtscEnd(int(index)), rtscEnd(int(u * meshCount + mesh)), a / (a - b));
+            if (at.x > 0.0 && at.y > 0.0)
+                types |= CONTOUR_SUGGESTIVE;
+        }
+#else
         if (crossing && nearer)
             types |= CONTOUR_SUGGESTIVE;
+#endif
     }
     vec3 p = texelFetch(positions, int(index)).xyz;
     vec3 pixel = project(p);

@@ -4,7 +4,8 @@
 // Pass 1 of the per-view contour tests (engine/contours/candidates.h, whose CPU reference this
 // follows): for every (mesh, vertex) the radial curvature k_r, which pass 2 reads for the
 // neighbours' zero-crossing test, and the vertex's own tests: silhouette, labelled, and the
-// suggestive pre-test (front-facing, D_w k_r l^2 over threshold). Both go out as one radial word
+// suggestive pre-test (front-facing, and with the vertex-strength filter D_w k_r l^2 over
+// threshold; rtsc's filter is pass 2's). Both go out as one radial word
 // (shaders/shared.h), and the pairs that passed a test are listed for pass 2. Culling to the
 // rectangle and sphere is pass 2's, which projects the vertices it appends anyway. Every lane
 // does the same work: no branch a SIMD row would run for one lane.
@@ -31,40 +32,34 @@ layout(binding = CONTOURS_BINDING_WORK, std430) restrict buffer Work {
 };
 #include "contours_view.glsl"
 #include "octahedral.glsl"
+#include "contours_shape.glsl"
 
 // The radial word of the pair at batch index `index`, whose vertex has VertexFlag bits `flag`;
 // `listed` says whether pass 2 must visit it.
 uint radialWord(int index, uint flag, out bool listed)
 {
-    vec3 p = texelFetch(positions, index).xyz;
-    uvec4 shape = texelFetch(shapes, index);
-    vec3 n = octDecode(unpackSnorm2x16(shape.x));
-    vec3 view = toCamera(p);
-    float ndotv = dot(n, view);
+    ViewedShape v = viewedShape(index);
+    float ndotv = v.ndotv, u = v.u, t = v.t, s2 = v.s2;
+    vec2 k = v.k;
     // k_r = k1 cos^2 + k2 sin^2 of the angle between w (the view vector projected on the
     // tangent plane) and dir1; D_w k_r from the derivative tensor C (contours/curvature.h).
-    // dir1 and dir2 are tangent, so w's coordinates are view's.
-    vec3 d1 = octDecode(unpackSnorm2x16(shape.y));
-    float u = dot(view, d1), t = dot(view, cross(n, d1));
-    float s2 = max(u * u + t * t, 1e-30);
-    vec2 k = unpackHalf2x16(shape.z);
-    vec4 c = vec4(unpackHalf2x16(shape.w), unpackHalf2x16(texelFetch(shapesC23, index).x));
     float s = sqrt(s2);
     float kr = (k.x * u * u + k.y * t * t) / s2;
-    float cwww = (c.x * u * u * u + 3.0 * c.y * u * u * t + 3.0 * c.z * u * t * t + c.w * t * t * t) / (s2 * s);
-    float dwkr = cwww + 2.0 * k.x * k.y * ndotv / s;
+    float dwkr = cwww(v) + 2.0 * k.x * k.y * ndotv / s;
     // Selections by mix() and all() rather than if, ?: and &&, which glslang turns into
     // branches (BENCHMARKS.md, "Why the kernels look as they do").
-    bool plane = (shape.x | shape.y) != 0u;
+    bool plane = v.plane;
     bool radialDefined = all(bvec2(plane, u * u + t * t > 1e-24));
     // +0 where undefined or zero, so that the word's sign is k_r's "below zero".
     kr = mix(0.0, clamp(kr, -1e30, 1e30), all(bvec2(radialDefined, kr != 0.0)));
 
+    // rtsc's filter (thresholds.w >= 0) is tested at the crossing, in pass 2: no strength here.
+    bool rtsc = thresholds.w >= 0.0;
     // Where k_r keeps its sign on the whole one-ring for any view (GpuCulling::signLockTexels)
     // no zero crossing can mark the vertex: pass 2 need not look at its neighbours.
     bool locked = ((texelFetch(signLocks, index >> 5).x >> (uint(index) & 31u)) & 1u) != 0u;
     uint bits = mix(0u, CONTOUR_SILHOUETTE, abs(ndotv) < thresholds.x) |
-                mix(0u, CONTOUR_SUGGESTIVE, all(bvec4(radialDefined, ndotv > 0.0, dwkr * thresholds.z > thresholds.y, !locked))) |
+                mix(0u, CONTOUR_SUGGESTIVE, all(bvec4(radialDefined, ndotv > 0.0, any(bvec2(dwkr * thresholds.z > thresholds.y, rtsc)), !locked))) |
                 mix(0u, CONTOUR_LABELLED, all(bvec2((flag & VERTEX_LABELLED) != 0u, ndotv > -thresholds.x)));
     bits = mix(bits, 0u, (flag & VERTEX_EXCLUDED) != 0u);
     listed = all(bvec2(plane, bits != 0u));

@@ -157,7 +157,7 @@ using mat4 = glm::mat4;
     vec4 eye;        /* perspective: the eye, 1; orthographic: the unit vector towards the camera, 0 */                                    \
     vec4 rect;       /* x0, y0, x1, y1 in pixels */                                                                                        \
     vec4 sphere;     /* centre, radius in mm */                                                                                            \
-    vec4 thresholds; /* silhouette, suggestive, featureSize^2, 0 */                                                                        \
+    vec4 thresholds; /* silhouette, suggestive, featureSize^2, rtsc (< 0: vertex strength) */                                              \
     vec4 screen;     /* width, height */                                                                                                   \
     uvec4 counts;    /* vertexCount, meshCount, capacity, listed vertices */
 // One appended candidate in OUTPUT (std430).

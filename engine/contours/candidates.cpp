@@ -50,6 +50,8 @@ std::vector<Candidate> contourCandidates(const std::vector<Mesh>& meshes, const 
     const Eigen::Index nv = meshes[0].V.rows();
     if (!flags.empty() && static_cast<Eigen::Index>(flags.size()) != nv)
         fail("contourCandidates: ", flags.size(), " vertex flags for ", nv, " vertices");
+    if (p.suggestiveFilter == SuggestiveFilter::RtscCrossing && !(p.rtscThreshold >= 0 && std::isfinite(p.rtscThreshold)))
+        fail("contourCandidates: rtsc threshold ", p.rtscThreshold, " must be finite and not negative");
     const Wedges wedges = buildWedges(meshes[0].F, nv);
     const double l2 = p.featureSize * p.featureSize;
 
@@ -76,9 +78,12 @@ std::vector<Candidate> contourCandidates(const std::vector<Mesh>& meshes, const 
                 types |= ContourSilhouette;
             tie |= std::abs(std::abs(r.ndotv) - p.silhouetteThreshold) < tol;
 
+            const bool rtsc = p.suggestiveFilter == SuggestiveFilter::RtscCrossing;
             const double strength = r.dwkr * l2;
-            tie |= std::abs(r.ndotv) < tol || std::abs(strength - p.suggestiveThreshold) < tol * p.suggestiveThreshold;
-            if (r.ndotv > 0 && strength > p.suggestiveThreshold) {
+            tie |= std::abs(r.ndotv) < tol;
+            if (!rtsc)
+                tie |= std::abs(strength - p.suggestiveThreshold) < tol * p.suggestiveThreshold;
+            if (r.ndotv > 0 && (rtsc || strength > p.suggestiveThreshold)) {
                 const double scale = std::abs(c.k1[v]) + std::abs(c.k2[v]);
                 for (std::uint32_t w = wedges.offsets[v]; w < wedges.offsets[v + 1]; ++w)
                     for (const std::uint32_t u : wedges.corners[w]) {
@@ -87,7 +92,20 @@ std::vector<Candidate> contourCandidates(const std::vector<Mesh>& meshes, const 
                         const double a = rc[v].kr, b = rc[u].kr;
                         const bool crossing = (a < 0) != (b < 0);
                         const bool nearer = std::abs(a) < std::abs(b) || (std::abs(a) == std::abs(b) && static_cast<std::uint32_t>(v) < u);
-                        if (crossing && nearer)
+                        bool passes = true;
+                        if (rtsc && crossing && nearer) {
+                            // rtsc's test where k_r is zero on the edge: num / den > threshold
+                            // with num = l^2 rtscNumerator - threshold n.v, den = n.v.
+                            const double t = a / (a - b);
+                            const double numV = l2 * rc[v].rtscNumerator - p.rtscThreshold * rc[v].ndotv;
+                            const double numU = l2 * rc[u].rtscNumerator - p.rtscThreshold * rc[u].ndotv;
+                            const double num = (1 - t) * numV + t * numU, den = (1 - t) * rc[v].ndotv + t * rc[u].ndotv;
+                            passes = num > 0 && den > 0;
+                            const double numScale = (1 - t) * (std::abs(l2 * rc[v].rtscNumerator) + p.rtscThreshold * std::abs(rc[v].ndotv))
+                                + t * (std::abs(l2 * rc[u].rtscNumerator) + p.rtscThreshold * std::abs(rc[u].ndotv));
+                            tie |= std::abs(num) < tol * numScale || std::abs(den) < tol;
+                        }
+                        if (crossing && nearer && passes)
                             types |= ContourSuggestive;
                         tie |= std::abs(a) < tol * scale || std::abs(b) < tol * scale
                             || (crossing && std::abs(std::abs(a) - std::abs(b)) < tol * scale);

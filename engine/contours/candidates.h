@@ -11,8 +11,14 @@
 //   1/sqrt(#V), so the default is 0.14 sqrt(863 / #V) (0.053 at 6,000, 0.026 at 25,000).
 // - suggestive (4.3.2; DeCarlo et al. 2003): front-facing (n . v > 0), k_r changes sign between
 //   the vertex and a neighbour and the vertex is the end nearer zero (|k_r| smaller; ties to the
-//   lower index), and D_w k_r l^2 > suggestiveThreshold, with l the mean edge length: the
-//   dimensionless form of DeCarlo's filter, which drops zero crossings of weak curvature.
+//   lower index), and a filter that drops zero crossings of weak curvature, one of two
+//   (SuggestiveFilter): the vertex's own strength, D_w k_r l^2 > suggestiveThreshold with l the
+//   mean edge length (FaceSketch's first filter); or rtsc's, DeCarlo and Rusinkiewicz's reference
+//   implementation (rtsc 1.6): tan(theta) D_w k_r l^2 > rtscThreshold at the zero crossing on
+//   the edge, its numerator and denominator (RadialCurvature::rtscNumerator, n . v) interpolated
+//   linearly there from both ends. rtsc keeps the passing part of a line where its test changes
+//   sign inside a triangle; here a vertex is kept when the crossing next to it passes, so the
+//   passing part keeps its vertices and a failing end does not drop its neighbour's.
 // - labelled (4.3.3): the dataset's contour vertices, unless facing away (n . v <= -silhouetteThreshold).
 // Vertices flagged excluded (4.3.3), and vertices without a tangent plane (zero normal), are
 // never candidates. A candidate is then kept only inside
@@ -40,10 +46,18 @@ enum VertexFlag : std::uint32_t {
     VertexExcluded = VERTEX_EXCLUDED, ///< never a candidate
 };
 
+/// Which test keeps a suggestive zero crossing (see above).
+enum class SuggestiveFilter : std::uint32_t {
+    VertexStrength, ///< D_w k_r l^2 at the vertex over suggestiveThreshold
+    RtscCrossing,   ///< tan(theta) D_w k_r l^2 at the crossing over rtscThreshold (rtsc 1.6)
+};
+
 struct ContourParams {
     double silhouetteThreshold = 0.14; ///< on |n . v|
-    double suggestiveThreshold = 0.02; ///< on D_w k_r l^2
-    double featureSize = 1.0;          ///< l: mean edge length, mm
+    double suggestiveThreshold = 0.02; ///< on D_w k_r l^2 (SuggestiveFilter::VertexStrength)
+    SuggestiveFilter suggestiveFilter = SuggestiveFilter::VertexStrength;
+    double rtscThreshold = 0.01; ///< on tan(theta) D_w k_r l^2 at a crossing (rtsc's sug_thresh, 0.01)
+    double featureSize = 1.0;    ///< l: mean edge length, mm
     /// Screen culling rectangle in pixels (x0, y0, x1, y1), inclusive; default: everything.
     double rect[4] = { -1e30, -1e30, 1e30, 1e30 };
     /// World culling sphere (centre xyz, radius) in mm; default: everything.

@@ -4,6 +4,7 @@
 #include "geometry/wedges.h"
 #include "shaders/contours_comp.h"
 #include "shaders/contours_radial_comp.h"
+#include "shaders/contours_rtsc_comp.h"
 #include "shaders/shared.h"
 
 #include <algorithm>
@@ -115,7 +116,7 @@ std::vector<Candidate> sortedCandidates(std::span<const ContourCandidate> raw, s
 
 ContourKernels builtInContourKernels()
 {
-    return { gpu::shaderCode(contours_radial_comp), gpu::shaderCode(contours_comp) };
+    return { gpu::shaderCode(contours_radial_comp), gpu::shaderCode(contours_comp), gpu::shaderCode(contours_rtsc_comp) };
 }
 
 GpuCandidates::GpuCandidates(
@@ -136,10 +137,13 @@ GpuCandidates::GpuCandidates(
         fail("GpuCandidates: the device (", device_.name, ") has no subgroup ballot in compute shaders");
     radialProgram_
         = gpu::createComputeProgram(device_, kernels.radial, CONTOURS_BINDING_COUNT, 0, CONTOURS_UNIFORM_BINDINGS, CONTOURS_TEXEL_BINDINGS);
-    try { // a variant's pass 2 may be what fails (ContourKernels): release pass 1's program
+    try { // a variant's pass 2 may be what fails (ContourKernels): release what was made
         program_ = gpu::createComputeProgram(
             device_, kernels.contours, CONTOURS_BINDING_COUNT, 0, CONTOURS_UNIFORM_BINDINGS, CONTOURS_TEXEL_BINDINGS);
+        rtscProgram_ = gpu::createComputeProgram(
+            device_, kernels.contoursRtsc, CONTOURS_BINDING_COUNT, 0, CONTOURS_UNIFORM_BINDINGS, CONTOURS_TEXEL_BINDINGS);
     } catch (...) {
+        gpu::destroyComputeProgram(device_, program_);
         gpu::destroyComputeProgram(device_, radialProgram_);
         throw;
     }
@@ -173,6 +177,7 @@ GpuCandidates::~GpuCandidates()
         gpu::destroyTexelView(device_, *view);
         gpu::destroyBuffer(device_, *buffer);
     }
+    gpu::destroyComputeProgram(device_, rtscProgram_);
     gpu::destroyComputeProgram(device_, program_);
     gpu::destroyComputeProgram(device_, radialProgram_);
 }
@@ -280,7 +285,11 @@ std::uint32_t GpuCandidates::list(const Camera& camera, const ContourParams& p)
         = camera.kind == Projection::Perspective ? glm::vec4(glm::vec3(camera.eye), 1.0f) : glm::vec4(glm::vec3(-camera.forward), 0.0f);
     view.rect = { clampToFloat(p.rect[0]), clampToFloat(p.rect[1]), clampToFloat(p.rect[2]), clampToFloat(p.rect[3]) };
     view.sphere = { float(p.sphere[0]), float(p.sphere[1]), float(p.sphere[2]), clampToFloat(p.sphere[3]) };
-    view.thresholds = { float(p.silhouetteThreshold), float(p.suggestiveThreshold), float(p.featureSize * p.featureSize), 0.0f };
+    if (p.suggestiveFilter == SuggestiveFilter::RtscCrossing && !(p.rtscThreshold >= 0 && std::isfinite(p.rtscThreshold)))
+        fail("GpuCandidates: rtsc threshold ", p.rtscThreshold, " must be finite and not negative");
+    // w: rtsc's threshold, or -1 for the vertex-strength filter (shaders/shared.h).
+    const float rtsc = p.suggestiveFilter == SuggestiveFilter::RtscCrossing ? float(p.rtscThreshold) : -1.0f;
+    view.thresholds = { float(p.silhouetteThreshold), float(p.suggestiveThreshold), float(p.featureSize * p.featureSize), rtsc };
     view.screen = { float(camera.width), float(camera.height), 0.0f, 0.0f };
     view.counts = { vertexCount, meshCount, capacity_, listCount };
     gpu::uploadBuffer(device_, view_, &view, sizeof(view));
@@ -309,7 +318,8 @@ void GpuCandidates::record(VkCommandBuffer cmd)
               &radialTexels_, &neighbourOffsetTexels_, &neighbourTexels_, &output_, &work_, &workTexels_, &culling_.signLockTexels() };
     gpu::dispatchRaw(device_, cmd, radialProgram_, meshInvocations, listCount, 1, buffers, nullptr, 0);
     gpu::computeToIndirectBarrier(cmd);
-    gpu::dispatchIndirect(device_, cmd, program_, work_, 0, buffers, nullptr, 0);
+    const bool rtsc = viewData_.thresholds[3] >= 0; // rtsc's filter (list())
+    gpu::dispatchIndirect(device_, cmd, rtsc ? rtscProgram_ : program_, work_, 0, buffers, nullptr, 0);
     gpu::hostReadBarrier(cmd);
     gpu::timerEnd(cmd, timer_);
 }

@@ -40,12 +40,16 @@
 namespace facesketch {
 
 /// The SPIR-V of the two passes. The built-in pair is shaders/contours_radial.comp.glsl and
-/// shaders/contours.comp.glsl; another must keep their bindings and the radial word, and may
+/// shaders/contours.comp.glsl, whose pass 2 with rtsc's filter is the same file compiled with
+/// CONTOURS_RTSC (a pipeline of its own: on lavapipe a branch costs both its sides, and the
+/// crossing's test would slow the default filter's pass 2 twofold); another must keep their
+/// bindings and the radial word, and may
 /// change the workgroup size (read from its SPIR-V). `facesketch bench contours --pass1 FILE
 /// --pass2 FILE` times such a variant against the built-in kernels in one process.
 struct ContourKernels {
-    gpu::ShaderCode radial;   ///< pass 1
-    gpu::ShaderCode contours; ///< pass 2
+    gpu::ShaderCode radial;       ///< pass 1
+    gpu::ShaderCode contours;     ///< pass 2
+    gpu::ShaderCode contoursRtsc; ///< pass 2 for SuggestiveFilter::RtscCrossing
 };
 ContourKernels builtInContourKernels();
 
@@ -94,7 +98,7 @@ private:
     void destroyBatchBuffers();
     void createOutput();
 
-    gpu::ComputeProgram radialProgram_, program_;
+    gpu::ComputeProgram radialProgram_, program_, rtscProgram_;
     std::vector<std::uint32_t> flags_; // VertexFlag per vertex, sent with the vertex list
     gpu::Buffer view_, neighbourOffsets_, neighbours_, vertexList_;
     gpu::TexelView neighbourOffsetTexels_, neighbourTexels_, vertexListTexels_;

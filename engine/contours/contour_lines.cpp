@@ -2,7 +2,9 @@
 
 #include "core/error.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace facesketch {
 
@@ -36,6 +38,45 @@ void traceZero(const Mesh& mesh, Eigen::Index t, const std::vector<double>& f, s
     }
 }
 
+// rtsc's filter (contours/candidates.h, SuggestiveFilter::RtscCrossing) on the zero segment of
+// k_r in triangle t: num and den of tan(theta) D_w k_r l^2 - threshold interpolate linearly to
+// the segment's ends and along it, and the part where both are positive is appended: an
+// interval, as each is positive on one side of a point.
+void traceSuggestiveRtsc(const Mesh& mesh, Eigen::Index t, const std::vector<double>& kr, const std::vector<double>& num,
+    const std::vector<double>& den, std::vector<glm::vec3>& out)
+{
+    std::array<glm::vec3, 2> ends;
+    std::array<double, 2> n {}, d {};
+    int found = 0;
+    for (int e = 0; e < 3 && found < 2; ++e) {
+        const int a = mesh.F(t, e), b = mesh.F(t, (e + 1) % 3);
+        if ((kr[a] < 0) == (kr[b] < 0))
+            continue;
+        const double s = kr[a] / (kr[a] - kr[b]);
+        ends[found] = lerp(mesh, a, b, s);
+        n[found] = num[a] + s * (num[b] - num[a]);
+        d[found] = den[a] + s * (den[b] - den[a]);
+        ++found;
+    }
+    if (found != 2)
+        return;
+    // f(x) = f0 + x (f1 - f0) > 0 on x in [0, 1]: clip [lo, hi] to where it holds.
+    double lo = 0, hi = 1;
+    for (const auto& f : { n, d }) {
+        if (f[0] <= 0 && f[1] <= 0)
+            return;
+        const double x = f[0] / (f[0] - f[1]);
+        if (f[0] <= 0)
+            lo = std::max(lo, x);
+        else if (f[1] <= 0)
+            hi = std::min(hi, x);
+    }
+    if (!(hi > lo))
+        return;
+    out.push_back(ends[0] + float(lo) * (ends[1] - ends[0]));
+    out.push_back(ends[0] + float(hi) * (ends[1] - ends[0]));
+}
+
 } // namespace
 
 ContourLines contourLines(const Mesh& mesh, const Curvature& c, const Camera& camera, const ContourParams& params,
@@ -47,7 +88,7 @@ ContourLines contourLines(const Mesh& mesh, const Curvature& c, const Camera& ca
     if (!flags.empty() && static_cast<Eigen::Index>(flags.size()) != nv)
         fail("contourLines: ", flags.size(), " vertex flags for ", nv, " vertices");
 
-    std::vector<double> ndotv(nv), kr(nv), strength(nv);
+    std::vector<double> ndotv(nv), kr(nv), strength(nv), rtscNum(nv);
     const double l2 = params.featureSize * params.featureSize;
     for (Eigen::Index v = 0; v < nv; ++v) {
         const glm::dvec3 to = camera.toCamera({ mesh.V(v, 0), mesh.V(v, 1), mesh.V(v, 2) });
@@ -55,7 +96,11 @@ ContourLines contourLines(const Mesh& mesh, const Curvature& c, const Camera& ca
         ndotv[v] = r.ndotv;
         kr[v] = r.kr;
         strength[v] = r.dwkr * l2;
+        rtscNum[v] = l2 * r.rtscNumerator - params.rtscThreshold * r.ndotv;
     }
+    const bool rtsc = params.suggestiveFilter == SuggestiveFilter::RtscCrossing;
+    if (rtsc && !(params.rtscThreshold >= 0 && std::isfinite(params.rtscThreshold)))
+        fail("contourLines: rtsc threshold ", params.rtscThreshold, " must be finite and not negative");
     auto interpolated = [](const std::vector<double>& g, int a, int b, double s) { return g[a] + s * (g[b] - g[a]); };
 
     ContourLines lines;
@@ -63,9 +108,12 @@ ContourLines contourLines(const Mesh& mesh, const Curvature& c, const Camera& ca
         if (!flags.empty() && ((flags[mesh.F(t, 0)] | flags[mesh.F(t, 1)] | flags[mesh.F(t, 2)]) & VertexExcluded))
             continue;
         traceZero(mesh, t, ndotv, lines.silhouette, [](int, int, double) { return true; });
-        traceZero(mesh, t, kr, lines.suggestive, [&](int a, int b, double s) {
-            return interpolated(ndotv, a, b, s) > 0 && interpolated(strength, a, b, s) > params.suggestiveThreshold;
-        });
+        if (rtsc)
+            traceSuggestiveRtsc(mesh, t, kr, rtscNum, ndotv, lines.suggestive);
+        else
+            traceZero(mesh, t, kr, lines.suggestive, [&](int a, int b, double s) {
+                return interpolated(ndotv, a, b, s) > 0 && interpolated(strength, a, b, s) > params.suggestiveThreshold;
+            });
     }
     for (const auto& [name, path] : labelled)
         for (size_t i = 0; i + 1 < path.size(); ++i) {

@@ -4,7 +4,9 @@
 // two edges where it changes sign (linear interpolation along the edge), as line primitives for
 // render/renderer.h. Silhouettes are the zero set of n . v; suggestive contours the zero set of
 // the radial curvature k_r where D_w k_r l^2 exceeds the threshold and the surface faces the
-// camera (DeCarlo et al. 2003), both with the conventions of contours/candidates.h. Labelled
+// camera (DeCarlo et al. 2003), both with the conventions of contours/candidates.h: with the
+// vertex-strength filter a segment is kept whole where both its ends pass; with rtsc's filter,
+// the part of it where the test passes (as rtsc draws it). Labelled
 // contours are polylines through the dataset's vertex paths.
 
 #include "contours/candidates.h"

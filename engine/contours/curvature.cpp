@@ -261,6 +261,8 @@ RadialCurvature radialCurvature(const Curvature& c, Eigen::Index vertex, const E
     const auto& d = c.dcurv.row(vertex);
     const double cwww = (d[0] * u * u * u + 3 * d[1] * u * u * v + 3 * d[2] * u * v * v + d[3] * v * v * v) / (s2 * s);
     r.dwkr = cwww + 2 * c.k1[vertex] * c.k2[vertex] * r.ndotv / s;
+    const double torsion = (c.k2[vertex] - c.k1[vertex]) * u * v / s2;
+    r.rtscNumerator = s * cwww - 2 * r.ndotv * torsion * torsion;
     return r;
 }
 

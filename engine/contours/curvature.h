@@ -42,10 +42,16 @@ Curvature estimateCurvature(const Mesh& mesh);
 /// D_w k_r = C(w,w,w)/|w|^3 + 2 K cos(theta) / sin(theta), K = k1 k2), where w is the
 /// projection of the unit vector towards the camera `toCamera` onto the tangent plane and
 /// theta its angle to the normal. Returns false (and zeros) when w vanishes (view along n).
+/// Also rtsc's form of the derivative (DeCarlo and Rusinkiewicz's reference implementation,
+/// rtsc 1.6), which replaces 2 K cot(theta) by -2 tau_r^2 cot(theta), tau_r = (k2 - k1) cos phi
+/// sin phi the geodesic torsion along w: the two agree where k_r = 0, where they are read.
 struct RadialCurvature {
     double kr = 0;
     double dwkr = 0;
     double ndotv = 0;
+    /// sin(theta) (C(w,w,w)/|w|^3 - 2 tau_r^2 cot(theta)): the numerator of rtsc's
+    /// tan(theta) D_w k_r, whose denominator is ndotv (both interpolate linearly along an edge).
+    double rtscNumerator = 0;
 };
 RadialCurvature radialCurvature(const Curvature& c, Eigen::Index vertex, const Eigen::Vector3d& toCamera);
 

@@ -2,6 +2,7 @@
 
 #include "contours/candidates_gpu.h"
 #include "contours/curvature_gpu.h"
+#include "contours/region_candidates.h"
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "geometry/graph.h"
@@ -59,6 +60,7 @@ void MapperParams::validate() const
     positive("tauMm", tauMm);
     positive("candidateRadiusTau", candidateRadiusTau);
     positive("depthToleranceMm", depthToleranceMm);
+    nonNegative("rtscThreshold", rtscThreshold);
     if (borderRings < 0 || borderRings > 16)
         fail("mapper parameter borderRings = ", borderRings, " must be in [0, 16]");
     if (similarFaces < 0)
@@ -97,13 +99,13 @@ void setMapperParam(MapperParams& params, const std::string& assignment)
         { "sigmaS", &params.sigmaS }, { "sigmaDTau", &params.sigmaDTau }, { "sigmaC", &params.sigmaC },
         { "sigmaStroke", &params.sigmaStroke }, { "sigmaSkelTau", &params.sigmaSkelTau }, { "unreachableHops", &params.unreachableHops },
         { "lambda", &params.lambda }, { "alpha", &params.alpha }, { "beta", &params.beta },
-        { "heuristicEndpointRadiusTau", &params.heuristicEndpointRadiusTau } };
+        { "heuristicEndpointRadiusTau", &params.heuristicEndpointRadiusTau }, { "rtscThreshold", &params.rtscThreshold } };
     const std::map<std::string, int*> integers { { "maxCandidatesPerPoint", &params.maxCandidatesPerPoint },
         { "borderRings", &params.borderRings }, { "similarFaces", &params.similarFaces } };
     const std::map<std::string, bool*> flags { { "ownContours", &params.ownContours }, { "viewPlaneOnly", &params.viewPlaneOnly },
         { "acrossStrokeOnly", &params.acrossStrokeOnly }, { "useConnectivity", &params.useConnectivity },
         { "useStroke", &params.useStroke }, { "useSkeleton", &params.useSkeleton },
-        { "heuristicConnectivity", &params.heuristicConnectivity } };
+        { "heuristicConnectivity", &params.heuristicConnectivity }, { "rtscSuggestive", &params.rtscSuggestive } };
     if (const auto r = reals.find(name); r != reals.end()) {
         *r->second = value;
     } else if (const auto i = integers.find(name); i != integers.end()) {
@@ -196,9 +198,9 @@ struct StrokeReader::Impl {
     gpu::Device& device;
     double featureSize = 1;
     std::uint32_t faceCount = 0;
-    // The simple mapper's own-contour pass: one mesh (the current face), made on first use.
-    std::unique_ptr<GpuCurvature> ownCurvature;
-    std::optional<GpuCandidates> ownCloud;
+    // The current face's own contours (the simple mapper's, MapperParams::ownContours): on
+    // the CPU, from the curvature of the stroke box's region only (contours/region_candidates.h).
+    std::optional<RegionCandidates> own;
 };
 
 StrokeReader::StrokeReader(
@@ -256,22 +258,19 @@ StrokeReading StrokeReader::read(
     ContourParams contour;
     contour.silhouetteThreshold = defaultSilhouetteThreshold(nv);
     contour.featureSize = impl_->featureSize;
+    if (params.rtscSuggestive) {
+        contour.suggestiveFilter = SuggestiveFilter::RtscCrossing;
+        contour.rtscThreshold = params.rtscThreshold;
+    }
     if (!strokeBox(contour, camera, projected.screen, projected.world, radiusPx, std::hypot(radiusPx / ppmm, params.depthToleranceMm))) {
         reading.message = "no point of the stroke lies on screen: nothing read";
         timing_ = { clock.milliseconds(), 0 };
         return reading;
     }
     auto ownCandidates = [&] {
-        if (!impl_->ownCurvature) {
-            impl_->ownCurvature = std::make_unique<GpuCurvature>(impl_->device, model_.triangles, nv);
-            impl_->ownCurvature->setPositions(meshMajorPositions({ currentFace }));
-            impl_->ownCurvature->run();
-            impl_->ownCloud.emplace(impl_->device, *impl_->ownCurvature, impl_->flags);
-        } else {
-            impl_->ownCurvature->setPositions(meshMajorPositions({ currentFace }));
-            impl_->ownCurvature->run();
-        }
-        std::vector<Candidate> own = impl_->ownCloud->build(camera, contour);
+        if (!impl_->own)
+            impl_->own.emplace(model_.triangles, nv, impl_->flags);
+        std::vector<Candidate> own = impl_->own->build(currentFace, camera, contour);
         if (anchor)
             own.erase(std::remove_if(own.begin(), own.end(),
                           [&](const Candidate& c) {

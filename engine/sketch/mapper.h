@@ -82,11 +82,18 @@ struct MapperParams {
     /// mesh's open border are dropped: a face mask's border seen edge-on is a silhouette of
     /// the mask, not of the face (issue 12's suspect). 0 keeps them all (the thesis).
     int borderRings = 0;
+    /// The suggestive contours' filter of the candidate cloud (contours/candidates.h): false,
+    /// FaceSketch's vertex strength (D_w k_r l^2 > 0.02 at the vertex); true, rtsc's test at the
+    /// zero crossing (tan(theta) D_w k_r l^2 > rtscThreshold, as DeCarlo and Rusinkiewicz's
+    /// reference implementation draws them). Measured in docs/sketching.md ("Suggestive
+    /// contours as rtsc draws them").
+    bool rtscSuggestive = false;
+    double rtscThreshold = 0.01; ///< rtsc's sug_thresh
     /// The current face's own contour candidates join the training faces' cloud (mesh index
     /// = the number of candidate faces). Beyond the thesis: as the face approaches the sketched
     /// one, its own contours carry the right vertex where other faces offer a neighbour's
-    /// (evaluation/contour_eval.h does the same in its refinements). Costs the curvature of one
-    /// mesh per stroke.
+    /// (evaluation/contour_eval.h does the same in its refinements). Costs the curvature of the
+    /// face around the stroke's box per reading (contours/region_candidates.h).
     bool ownContours = false;
     /// Observations pin only the image of the vertex in the view (its depth is left to the
     /// model) instead of the candidate's depth adapted to the stroke (4.6.2). On by default

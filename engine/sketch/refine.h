@@ -1,6 +1,6 @@
 #pragma once
 // Reading a stroke and applying it, then refining the reading against the face it rebuilt
-// (not in the thesis; docs/sketching.md, "Now: passes that keep to the first reading's lines"
+// (not in the thesis; docs/sketching.md, "Passes that keep to the first reading's lines"
 // and "Before: each reading refined against the face it rebuilt").
 //
 // Why: the first reading (the HMM by default) decides which features a stroke draws from the

@@ -28,6 +28,23 @@ Camera topCamera(int size = 512)
     return frameSphere({ 0, 0, 0 }, 45.0, { 0, 0 }, size, size);
 }
 
+// The candidates are all suggestive, within one grid spacing of the inflection circle r = s
+// (the zero of the height field graph's h''), and close round it: every octant has some.
+void requireInflectionRing(const std::vector<Candidate>& cands, double s)
+{
+    REQUIRE(cands.size() > 40);
+    int octants[8] = {};
+    for (const Candidate& cand : cands) {
+        REQUIRE(cand.types == ContourSuggestive);
+        const double r = std::hypot(cand.world[0], cand.world[1]);
+        INFO("candidate at r = " << r);
+        REQUIRE(std::abs(r - s) < 0.5 + 1e-9);
+        ++octants[static_cast<int>(std::floor((std::atan2(cand.world[1], cand.world[0]) + M_PI) / (M_PI / 4))) % 8];
+    }
+    for (int o = 0; o < 8; ++o)
+        REQUIRE(octants[o] > 0);
+}
+
 } // namespace
 
 TEST_CASE("candidates: the silhouette of a sphere is the band |n.v| < threshold")
@@ -62,20 +79,27 @@ TEST_CASE("candidates: the suggestive contour of a bump seen from above is its i
     p.silhouetteThreshold = 0.0;
     p.suggestiveThreshold = 1e-3;
     p.featureSize = meanEdgeLength(m);
-    const std::vector<Candidate> cands = contourCandidates({ m }, { c }, {}, topCamera(), p);
-    REQUIRE(cands.size() > 40);
-    int octants[8] = {};
-    for (const Candidate& cand : cands) {
-        REQUIRE(cand.types == ContourSuggestive);
-        // The radial curvature's zero lies where the profile's curvature changes sign: r = s
-        // exactly for the height field's graph (h'' = 0); allow one grid spacing.
-        const double r = std::hypot(cand.world[0], cand.world[1]);
-        INFO("candidate at r = " << r);
-        REQUIRE(std::abs(r - s) < 0.5 + 1e-9);
-        ++octants[static_cast<int>(std::floor((std::atan2(cand.world[1], cand.world[0]) + M_PI) / (M_PI / 4))) % 8];
-    }
-    for (int o = 0; o < 8; ++o)
-        REQUIRE(octants[o] > 0); // a closed ring
+    requireInflectionRing(contourCandidates({ m }, { c }, {}, topCamera(), p), s);
+}
+
+TEST_CASE("candidates: rtsc's filter finds the bump's inflection circle too, and a higher threshold thins it to nothing")
+{
+    const double s = 8.0;
+    const Mesh m = bump(10.0, s, 121, 60.0);
+    const Curvature c = estimateCurvature(m);
+    ContourParams p;
+    p.silhouetteThreshold = 0.0;
+    p.suggestiveFilter = SuggestiveFilter::RtscCrossing;
+    p.rtscThreshold = 1e-3;
+    p.featureSize = meanEdgeLength(m);
+    requireInflectionRing(contourCandidates({ m }, { c }, {}, topCamera(), p), s);
+    // The ring's tan(theta) D_w k_r l^2 is bounded: a threshold far above it keeps nothing, and
+    // the vertex-strength threshold no longer matters.
+    p.rtscThreshold = 1e3;
+    p.suggestiveThreshold = 0;
+    REQUIRE(contourCandidates({ m }, { c }, {}, topCamera(), p).empty());
+    p.rtscThreshold = -1;
+    REQUIRE_THROWS_WITH(contourCandidates({ m }, { c }, {}, topCamera(), p), Catch::Contains("rtsc threshold -1"));
 }
 
 TEST_CASE("candidates: from below, the bump shows no suggestive contour (it is back-facing)")

@@ -144,6 +144,30 @@ TEST_CASE("candidates_gpu: the cloud equals the CPU reference, orthographic and 
             batch, curvature, gpu, flags, frameMesh(batch.meshes[0], { 30, 25 }, 640, 480, Projection::Perspective), params);
         REQUIRE(gpu.listedVertices() < nv);
     }
+    SECTION("rtsc's filter at the crossing, orthographic and perspective")
+    {
+        const Camera camera = frameMesh(batch.meshes[0], { 0, 40 }, 640, 480);
+        auto suggestive = [&] {
+            std::set<std::pair<std::uint32_t, std::uint32_t>> out;
+            for (const Candidate& c : gpu.build(camera, params))
+                if (c.types & ContourSuggestive)
+                    out.insert({ c.mesh, c.vertex });
+            return out;
+        };
+        const auto strength = suggestive();
+        params.suggestiveFilter = SuggestiveFilter::RtscCrossing;
+        params.rtscThreshold = 0.002;
+        const auto rtsc = suggestive();
+        // The filters keep different vertices: the GPU follows the one asked for.
+        INFO(strength.size() << " suggestive candidates by vertex strength, " << rtsc.size() << " by rtsc's filter");
+        REQUIRE(!rtsc.empty());
+        REQUIRE(rtsc != strength);
+        compareWithReference(batch, curvature, gpu, flags, camera, params);
+        compareWithReference(
+            batch, curvature, gpu, flags, frameMesh(batch.meshes[0], { 30, 25 }, 640, 480, Projection::Perspective), params);
+        params.rtscThreshold = -0.5;
+        REQUIRE_THROWS_WITH(gpu.build(frameMesh(batch.meshes[0], { 0, 40 }, 640, 480), params), Catch::Contains("rtsc threshold -0.5"));
+    }
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
 

@@ -89,3 +89,36 @@ TEST_CASE("curvature: radial curvature on a sphere is 1/r from every view, and D
         REQUIRE(rc.dwkr == Approx(2 * cot).margin(0.02 + 0.02 * std::abs(cot)));
     }
 }
+
+TEST_CASE("curvature: rtsc's numerator differs from sin(theta) D_w k_r by -2 cos(theta) k_r k_t, so both agree where k_r = 0")
+{
+    // One vertex with a saddle (k1 > 0 > k2) and a derivative tensor, seen from several views:
+    // K + tau_r^2 = k_r k_t (k_t the normal curvature across w), so the two forms of the
+    // derivative differ by 2 cot(theta) k_r k_t, which vanishes on the suggestive contour.
+    Curvature c;
+    c.normal = Vertices(1, 3);
+    c.normal << 0, 0, 1;
+    c.dir1 = Vertices(1, 3);
+    c.dir1 << 1, 0, 0;
+    c.dir2 = Vertices(1, 3);
+    c.dir2 << 0, 1, 0;
+    c.k1 = Eigen::VectorXd::Constant(1, 0.3);
+    c.k2 = Eigen::VectorXd::Constant(1, -0.12);
+    c.dcurv.resize(1, 4);
+    c.dcurv << 0.05, -0.02, 0.01, 0.04;
+    c.area = Eigen::VectorXd::Ones(1);
+    for (const double phi : { 0.2, 0.9, 1.4, 2.5 })
+        for (const double theta : { 0.3, 0.8, 1.3 }) {
+            const Eigen::Vector3d toCamera(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+            const RadialCurvature r = radialCurvature(c, 0, toCamera);
+            const double kt = c.k1[0] * std::sin(phi) * std::sin(phi) + c.k2[0] * std::cos(phi) * std::cos(phi);
+            INFO("phi " << phi << ", theta " << theta);
+            REQUIRE(r.rtscNumerator - std::sin(theta) * r.dwkr == Approx(-2 * std::cos(theta) * r.kr * kt).margin(1e-12));
+        }
+    // On the zero set of k_r (tan^2 phi = -k1 / k2) the two are one.
+    const double phi = std::atan(std::sqrt(-c.k1[0] / c.k2[0])), theta = 0.7;
+    const RadialCurvature r
+        = radialCurvature(c, 0, Eigen::Vector3d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)));
+    REQUIRE(std::abs(r.kr) < 1e-12);
+    REQUIRE(r.rtscNumerator == Approx(std::sin(theta) * r.dwkr).epsilon(1e-12));
+}

@@ -105,6 +105,16 @@ TEST_CASE("mapper: parameters are set by name, and the thesis' set keeps the the
     CHECK(p.maxCandidatesPerPoint == 48);
     setMapperParam(p, "unreachableHops=-1");
     REQUIRE_THROWS_WITH(p.validate(), Catch::Contains("unreachableHops = -1"));
+    // rtsc's suggestive filter, by name; a negative threshold is refused.
+    MapperParams r;
+    CHECK(!r.rtscSuggestive);
+    setMapperParam(r, "rtscSuggestive=1");
+    setMapperParam(r, "rtscThreshold=0.02");
+    CHECK(r.rtscSuggestive);
+    CHECK(r.rtscThreshold == 0.02);
+    r.validate();
+    setMapperParam(r, "rtscThreshold=-0.5");
+    REQUIRE_THROWS_WITH(r.validate(), Catch::Contains("rtscThreshold = -0.5"));
 
     // 4.8.5's sigma_d = 2 tau and 4.6.2's pinned observations in the thesis' set.
     const MapperParams thesis = MapperParams::thesis();
