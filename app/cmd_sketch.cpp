@@ -29,7 +29,7 @@ namespace {
 struct SketchCommand {
     std::string model, dataset, session, output, render, mapper;
     int similar = 3;
-    int refine = sketch::RefineOptions {}.passes;
+    int refine = -1; ///< -1: as each stroke recorded (else the default)
 };
 
 void runSketch(const SketchCommand& c)
@@ -44,9 +44,11 @@ void runSketch(const SketchCommand& c)
     gpu::ScopedDevice device;
     // The app replays through the same SessionReplayer (sketch/replay.h): the same face.
     sketch::SessionReplayer replayer(*device, m, d.candidateFaces, d.flags, d.landmarks, c.model);
-    sketch::RefineOptions refine;
-    refine.passes = c.refine;
-    replayer.setRefine(refine);
+    if (c.refine >= 0) {
+        sketch::RefineOptions refine;
+        refine.passes = c.refine;
+        replayer.setRefine(refine);
+    }
     std::cout << "# " << session.actions.size() << " strokes, " << m.vertexCount() << " vertices, cloud of " << d.candidateFaces.size()
               << " faces\n";
     std::cout << std::fixed << std::setprecision(1);
@@ -154,8 +156,8 @@ void addSketchCommand(CLI::App& root)
         ->check(CLI::IsMember({ "nearest", "heuristic", "hmm", "simple" }));
     cmd->add_option("--refine", c->refine,
            "Refinement passes per stroke: read again against the face its reading rebuilt, with the simple mapper (sketch/refine.h; 0: "
-           "the first reading alone)")
-        ->capture_default_str()
+           "the first reading alone). Default: as each stroke recorded, else "
+               + std::to_string(sketch::RefineOptions {}.passes))
         ->check(CLI::Range(0, 16));
     cmd->add_option("--similar", c->similar, "Print the k most similar training faces")->capture_default_str()->check(CLI::Range(0, 1000));
     cmd->callback([c] { runSketch(*c); });

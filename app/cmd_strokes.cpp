@@ -5,6 +5,7 @@
 #include "sketch_data.h"
 
 #include "core/error.h"
+#include "sketch/refine.h"
 #include "sketch/session.h"
 #include "sketch/simulate.h"
 
@@ -78,6 +79,8 @@ void runSimulate(const SimulateCommand& c)
         a.stroke = s.stroke;
         a.reading.mapper = c.mapper;
         a.reading.symmetry = c.symmetry;
+        a.reading.refinePasses = sketch::RefineOptions {}.passes;
+        a.reading.refineAnchorRings = sketch::RefineOptions {}.anchorRings;
         session.actions.push_back(std::move(a));
         ++perFeature[s.feature];
         points += s.stroke.points.size();

@@ -42,10 +42,10 @@ namespace facesketch {
 /// The SPIR-V of the two passes. The built-in pair is shaders/contours_radial.comp.glsl and
 /// shaders/contours.comp.glsl, whose pass 2 with rtsc's filter is the same file compiled with
 /// CONTOURS_RTSC (a pipeline of its own: on lavapipe a branch costs both its sides, and the
-/// crossing's test would slow the default filter's pass 2 twofold); another must keep their
-/// bindings and the radial word, and may
-/// change the workgroup size (read from its SPIR-V). `facesketch bench contours --pass1 FILE
-/// --pass2 FILE` times such a variant against the built-in kernels in one process.
+/// crossing's test would slow the default filter's pass 2 twofold). Another pair must keep
+/// their bindings and the radial word, and may change the workgroup size (read from its
+/// SPIR-V). `facesketch bench contours --pass1 FILE --pass2 FILE` times such a variant (of the
+/// default filter's pass 2) against the built-in kernels in one process.
 struct ContourKernels {
     gpu::ShaderCode radial;       ///< pass 1
     gpu::ShaderCode contours;     ///< pass 2

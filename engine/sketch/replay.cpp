@@ -15,10 +15,24 @@ SessionReplayer::SessionReplayer(gpu::Device& device, const stats::FaceModel& mo
 {
 }
 
+RefineOptions SessionReplayer::refineFor(const StrokeAction& action) const
+{
+    RefineOptions r = refine_;
+    if (!refineForced_) {
+        if (action.reading.refinePasses)
+            r.passes = *action.reading.refinePasses;
+        if (action.reading.refineAnchorRings)
+            r.anchorRings = *action.reading.refineAnchorRings;
+    }
+    r.validate();
+    return r;
+}
+
 ReplayOutcome SessionReplayer::apply(const StrokeAction& action, std::optional<MapperKind> mapperOverride)
 {
     ReplayOutcome out;
     out.mapper = mapperOverride ? *mapperOverride : parseMapper(action.reading.mapper);
+    out.refine = refineFor(action);
     if (action.reading.symmetry && !mirror_) {
         // Found once, from the mean face (the most symmetric), before anything is read so that a
         // face without a mirror map fails before the stroke changes anything.
@@ -46,7 +60,7 @@ ReplayOutcome SessionReplayer::apply(const StrokeAction& action, std::optional<M
     apply.correlation = action.reading.correlation;
     apply.mirror = action.reading.symmetry ? mirror_.get() : nullptr;
     ReadResult done
-        = applyAndRefine(reader_, tracking_, action.stroke, std::move(out.reading), out.mapper, MapperParams {}, apply, refine_);
+        = applyAndRefine(reader_, tracking_, action.stroke, std::move(out.reading), out.mapper, MapperParams {}, apply, out.refine);
     out.reading = std::move(done.reading);
     out.refinePasses = done.passes;
     out.readMs += done.readMs;

@@ -34,6 +34,7 @@ struct ReplayOutcome {
     MapperKind mapper = MapperKind::Hmm;
     StrokeReading reading;       ///< empty when refused; when applied, the one the face follows
     int refinePasses = 0;        ///< refinement passes applied (sketch/refine.h)
+    RefineOptions refine;        ///< the refinement the stroke was read with (refineFor)
     std::string error;           ///< when refused
     double readMs = 0;           ///< wall time of the readings (the first and the refinement passes)
     StrokeReader::Timing timing; ///< the reader's split of readMs
@@ -67,14 +68,18 @@ public:
     /// The mirror map, once a symmetric stroke has needed it; nullptr before.
     const MirrorMap* mirror() const { return mirror_.get(); }
     StrokeReader& reader() { return reader_; }
-    /// The refinement of every stroke applied from now on (default: RefineOptions{}). Throws
-    /// Error for invalid options, keeping the previous ones.
+    /// The refinement of every stroke applied from now on, overriding what the strokes
+    /// recorded (ReadingOptions::refinePasses, refineAnchorRings). Throws Error for invalid
+    /// options, keeping the previous ones.
     void setRefine(const RefineOptions& refine)
     {
         refine.validate();
         refine_ = refine;
+        refineForced_ = true;
     }
-    const RefineOptions& refine() const { return refine_; }
+    /// The refinement `action` is read with: setRefine's if called, else what the stroke
+    /// recorded, else RefineOptions{} (the reader's defaults).
+    RefineOptions refineFor(const StrokeAction& action) const;
 
 private:
     const stats::FaceModel& model_;
@@ -84,6 +89,7 @@ private:
     TrackingModel tracking_;
     std::unique_ptr<MirrorMap> mirror_;
     RefineOptions refine_;
+    bool refineForced_ = false;
 };
 
 } // namespace facesketch::sketch

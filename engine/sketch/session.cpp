@@ -178,7 +178,7 @@ Stroke parseStroke(const Node& n)
 
 ReadingOptions parseReading(const Node& n)
 {
-    n.object({ "mapper", "correlation", "symmetry" });
+    n.object({ "mapper", "correlation", "symmetry", "refine_passes", "refine_anchor_rings" });
     ReadingOptions r;
     r.mapper = n["mapper"].text();
     const auto& names = sessionMapperNames();
@@ -186,6 +186,11 @@ ReadingOptions parseReading(const Node& n)
         n["mapper"].bad(cat("expected nearest, heuristic, hmm or simple, found \"", r.mapper, "\""));
     r.correlation = n["correlation"].boolean();
     r.symmetry = n["symmetry"].boolean();
+    // The ranges RefineOptions::validate accepts.
+    if (n.has("refine_passes"))
+        r.refinePasses = n["refine_passes"].integer(0, 16);
+    if (n.has("refine_anchor_rings"))
+        r.refineAnchorRings = n["refine_anchor_rings"].integer(-1, 4);
     return r;
 }
 
@@ -395,9 +400,12 @@ std::string sessionToJson(const Session& session)
     for (std::size_t i = 0; i < session.actions.size(); ++i) {
         placePoseActions(i);
         const StrokeAction& a = session.actions[i];
-        actions.push_back({ { "type", "stroke" }, { "stroke", strokeJson(a.stroke) },
-            { "reading",
-                { { "mapper", a.reading.mapper }, { "correlation", a.reading.correlation }, { "symmetry", a.reading.symmetry } } } });
+        json reading { { "mapper", a.reading.mapper }, { "correlation", a.reading.correlation }, { "symmetry", a.reading.symmetry } };
+        if (a.reading.refinePasses)
+            reading["refine_passes"] = *a.reading.refinePasses;
+        if (a.reading.refineAnchorRings)
+            reading["refine_anchor_rings"] = *a.reading.refineAnchorRings;
+        actions.push_back({ { "type", "stroke" }, { "stroke", strokeJson(a.stroke) }, { "reading", std::move(reading) } });
     }
     placePoseActions(session.actions.size());
     json doc { { "format", kSessionFormat }, { "version", kSessionVersion }, { "actions", std::move(actions) } };
@@ -440,7 +448,8 @@ bool operator==(const Stroke& a, const Stroke& b)
 
 bool operator==(const ReadingOptions& a, const ReadingOptions& b)
 {
-    return a.mapper == b.mapper && a.correlation == b.correlation && a.symmetry == b.symmetry;
+    return a.mapper == b.mapper && a.correlation == b.correlation && a.symmetry == b.symmetry && a.refinePasses == b.refinePasses
+        && a.refineAnchorRings == b.refineAnchorRings;
 }
 
 bool operator==(const StrokeAction& a, const StrokeAction& b)

@@ -11,6 +11,7 @@
 #include "sketch/stroke.h"
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,12 @@ struct ReadingOptions {
     bool correlation = true;
     /// Also mirror the stroke's observations onto the other half of the face (sketch/symmetry.h).
     bool symmetry = false;
+    /// The refinement the stroke was read with (sketch/refine.h: passes after the first
+    /// reading, and the rings the passes keep to, -1 for none), so that a session replays to
+    /// the same face after a release changes the defaults. Absent in sessions written before
+    /// 5 December 2026: those strokes are read with the reader's defaults.
+    std::optional<int> refinePasses;
+    std::optional<int> refineAnchorRings;
 };
 
 /// The mapper names a session accepts, in the order of MapperKind.

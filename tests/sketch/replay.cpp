@@ -66,6 +66,41 @@ TEST_CASE("replay: strokes give the face of reading, applying and refining them 
     REQUIRE(replayer.tracking().face() == tracking.face());
 }
 
+TEST_CASE("replay: a stroke is refined as it recorded, unless the replayer is told otherwise")
+{
+    const auto& w = test::sketchWorld();
+    const std::vector<Stroke> strokes = frontStrokes();
+    StrokeAction recorded { strokes[0], {} };
+    recorded.reading.refinePasses = 0;
+    recorded.reading.refineAnchorRings = -1;
+    StrokeAction old { strokes[0], {} }; // written before strokes recorded their refinement
+
+    SessionReplayer replayer(test::device(), w.model, w.candidateFaces, w.flags, {}, "test model");
+    REQUIRE(replayer.refineFor(old).passes == RefineOptions {}.passes);
+    REQUIRE(replayer.refineFor(old).anchorRings == RefineOptions {}.anchorRings);
+    const ReplayOutcome out = replayer.apply(recorded);
+    REQUIRE(out.kind == ReplayOutcome::Kind::Applied);
+    REQUIRE(out.refine.passes == 0);
+    REQUIRE(out.refine.anchorRings == -1);
+    REQUIRE(out.refinePasses == 0);
+    // The face is the first reading's alone, as the recorded refinement asks.
+    StrokeReader reader(test::device(), w.model, w.candidateFaces, w.flags);
+    TrackingModel tracking(w.model);
+    RefineOptions none;
+    none.passes = 0;
+    none.anchorRings = -1;
+    (void)readAndApply(reader, tracking, recorded.stroke, MapperKind::Hmm, {}, {}, none);
+    REQUIRE(replayer.tracking().face() == tracking.face());
+
+    // setRefine overrides what the stroke recorded.
+    SessionReplayer forced(test::device(), w.model, w.candidateFaces, w.flags, {}, "test model");
+    RefineOptions two;
+    two.passes = 2;
+    forced.setRefine(two);
+    REQUIRE(forced.refineFor(recorded).passes == 2);
+    REQUIRE(forced.refineFor(recorded).anchorRings == RefineOptions {}.anchorRings);
+}
+
 TEST_CASE("replay: a refused stroke and one that pins nothing leave the face unchanged")
 {
     const auto& w = test::sketchWorld();

@@ -37,6 +37,10 @@ Session example()
         action.reading.mapper = sessionMapperNames()[static_cast<size_t>(a)];
         action.reading.correlation = a != 0;
         action.reading.symmetry = a == 2;
+        if (a != 0) { // the first stroke as sessions before 5 December 2026 have it
+            action.reading.refinePasses = a;
+            action.reading.refineAnchorRings = a == 1 ? -1 : 4;
+        }
         s.actions.push_back(action);
     }
     return s;
@@ -80,6 +84,12 @@ TEST_CASE("session: save and load round trip exactly, and saving again gives the
     REQUIRE(doc["format"] == "facesketch-session");
     REQUIRE(doc["version"] == kSessionVersion);
     REQUIRE(doc["actions"][2]["stroke"]["surface"] == "profile-plane");
+    // The refinement a stroke was read with, where recorded; older strokes leave it out.
+    REQUIRE(doc["actions"][1]["reading"]["refine_passes"] == 1);
+    REQUIRE(doc["actions"][1]["reading"]["refine_anchor_rings"] == -1);
+    REQUIRE_FALSE(doc["actions"][0]["reading"].contains("refine_passes"));
+    REQUIRE_FALSE(back.actions[0].reading.refinePasses.has_value());
+    REQUIRE(back.actions[2].reading.refineAnchorRings == 4);
 }
 
 TEST_CASE("session: a truncated or empty file names the file")
@@ -147,6 +157,9 @@ TEST_CASE("session: every bad field is named by its JSON path")
         { "/actions", json::object(), "actions: expected an array" },
         { "/actions/1/type", "pose", "actions[1].type: expected \"stroke\"" },
         { "/actions/1/extra", 1, "actions[1].extra: unknown field" },
+        { "/actions/1/reading/refine_passes", 17, "actions[1].reading.refine_passes: must lie in [0, 16], found 17" },
+        { "/actions/1/reading/refine_passes", 1.5, "actions[1].reading.refine_passes: expected an integer" },
+        { "/actions/2/reading/refine_anchor_rings", -2, "actions[2].reading.refine_anchor_rings: must lie in [-1, 4]" },
         { "/actions/0/stroke/points/1/x", "a", "actions[0].stroke.points[1].x: expected a number" },
         { "/actions/0/stroke/points/1/y", nullptr, "actions[0].stroke.points[1].y: expected a number" },
         { "/actions/0/stroke/points/3/t", -1.0, "actions[0].stroke.points[3].t: a time in ms" },
