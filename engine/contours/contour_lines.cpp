@@ -60,16 +60,16 @@ void traceSuggestiveRtsc(const Mesh& mesh, Eigen::Index t, const std::vector<dou
     }
     if (found != 2)
         return;
-    // f(x) = f0 + x (f1 - f0) > 0 on x in [0, 1]: clip [lo, hi] to where it holds.
+    // f(x) = f0 + x (f1 - f0) > 0 on x in [0, 1]: clip [lo, hi] to where it holds. The zero
+    // is computed only where f changes sign, so f0 - f1 is not zero.
     double lo = 0, hi = 1;
     for (const auto& f : { n, d }) {
         if (f[0] <= 0 && f[1] <= 0)
             return;
-        const double x = f[0] / (f[0] - f[1]);
         if (f[0] <= 0)
-            lo = std::max(lo, x);
+            lo = std::max(lo, f[0] / (f[0] - f[1]));
         else if (f[1] <= 0)
-            hi = std::min(hi, x);
+            hi = std::min(hi, f[0] / (f[0] - f[1]));
     }
     if (!(hi > lo))
         return;
