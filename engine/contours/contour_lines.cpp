@@ -16,26 +16,33 @@ glm::vec3 lerp(const Mesh& mesh, int a, int b, double t)
     return { p.x(), p.y(), p.z() };
 }
 
+// Where `f` crosses zero on the edges of triangle t: the edge (a, b) and the zero's parameter s
+// along it, at most two; returns how many.
+struct Crossing {
+    int a, b;
+    double s;
+};
+int zeroCrossings(const Mesh& mesh, Eigen::Index t, const std::vector<double>& f, std::array<Crossing, 2>& out)
+{
+    int found = 0;
+    for (int e = 0; e < 3 && found < 2; ++e) {
+        const int a = mesh.F(t, e), b = mesh.F(t, (e + 1) % 3);
+        if ((f[a] < 0) != (f[b] < 0))
+            out[found++] = { a, b, f[a] / (f[a] - f[b]) };
+    }
+    return found;
+}
+
 // Appends the segment where `f` crosses zero inside triangle t, if `keep` accepts the
 // interpolated crossing points (given the edge and parameter).
 template <typename Keep>
 void traceZero(const Mesh& mesh, Eigen::Index t, const std::vector<double>& f, std::vector<glm::vec3>& out, Keep keep)
 {
-    std::array<glm::vec3, 2> ends;
-    int found = 0;
-    for (int e = 0; e < 3 && found < 2; ++e) {
-        const int a = mesh.F(t, e), b = mesh.F(t, (e + 1) % 3);
-        if ((f[a] < 0) == (f[b] < 0))
-            continue;
-        const double s = f[a] / (f[a] - f[b]);
-        if (!keep(a, b, s))
-            return;
-        ends[found++] = lerp(mesh, a, b, s);
-    }
-    if (found == 2) {
-        out.push_back(ends[0]);
-        out.push_back(ends[1]);
-    }
+    std::array<Crossing, 2> c;
+    if (zeroCrossings(mesh, t, f, c) != 2 || !keep(c[0].a, c[0].b, c[0].s) || !keep(c[1].a, c[1].b, c[1].s))
+        return;
+    out.push_back(lerp(mesh, c[0].a, c[0].b, c[0].s));
+    out.push_back(lerp(mesh, c[1].a, c[1].b, c[1].s));
 }
 
 // rtsc's filter (contours/candidates.h, SuggestiveFilter::RtscCrossing) on the zero segment of
@@ -45,21 +52,17 @@ void traceZero(const Mesh& mesh, Eigen::Index t, const std::vector<double>& f, s
 void traceSuggestiveRtsc(const Mesh& mesh, Eigen::Index t, const std::vector<double>& kr, const std::vector<double>& num,
     const std::vector<double>& den, std::vector<glm::vec3>& out)
 {
+    std::array<Crossing, 2> c;
+    if (zeroCrossings(mesh, t, kr, c) != 2)
+        return;
     std::array<glm::vec3, 2> ends;
     std::array<double, 2> n {}, d {};
-    int found = 0;
-    for (int e = 0; e < 3 && found < 2; ++e) {
-        const int a = mesh.F(t, e), b = mesh.F(t, (e + 1) % 3);
-        if ((kr[a] < 0) == (kr[b] < 0))
-            continue;
-        const double s = kr[a] / (kr[a] - kr[b]);
-        ends[found] = lerp(mesh, a, b, s);
-        n[found] = num[a] + s * (num[b] - num[a]);
-        d[found] = den[a] + s * (den[b] - den[a]);
-        ++found;
+    for (int i = 0; i < 2; ++i) {
+        const auto [a, b, s] = c[i];
+        ends[i] = lerp(mesh, a, b, s);
+        n[i] = num[a] + s * (num[b] - num[a]);
+        d[i] = den[a] + s * (den[b] - den[a]);
     }
-    if (found != 2)
-        return;
     // f(x) = f0 + x (f1 - f0) > 0 on x in [0, 1]: clip [lo, hi] to where it holds. The zero
     // is computed only where f changes sign, so f0 - f1 is not zero.
     double lo = 0, hi = 1;
