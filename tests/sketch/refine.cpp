@@ -3,6 +3,7 @@
 // previous reading applied, and a refined face closer to the sketched one.
 #include "sketch/refine.h"
 
+#include "contours/region_candidates.h"
 #include "core/error.h"
 #include "fixture.h"
 #include "sketch/simulate.h"
@@ -139,41 +140,62 @@ TEST_CASE("refine: against the rebuilt face's own contours the sketched face is 
 
 TEST_CASE("refine: the passes keep to the lines of the first reading")
 {
-    // Front strokes of two test faces, each read, applied and refined, anchored at 0 rings and
-    // not anchored: the passes' vertices that are not vertices of the first reading can only be
-    // silhouette vertices when anchored, so fewer of them stray than without the anchor (on
-    // this fixture the default 2 rings changes no front reading; the figures that chose it are
-    // in refine.h).
+    // Front strokes of the fixture's test faces, each read, applied and refined, anchored at 0
+    // rings and not anchored. Anchored, a pass may read a vertex that the first reading did not
+    // only where the face it reads has its own silhouette (the lines ReadAnchor leaves free);
+    // not anchored, some passes read other lines away from the first reading's, so the check
+    // is not vacuous (on this fixture: 1,257 pass vertices anchored, 508 of them off the first
+    // reading, all on silhouettes; not anchored 564 off it, 149 of those on no silhouette).
+    // Until v16 of the built-in faces this compared the shares off the first reading with and
+    // without the anchor (at most 0.8 times); on v16's fixture they are 0.41 and 0.43, since
+    // most such vertices lie on silhouettes either way. The figures that chose 2 rings are in
+    // refine.h.
     const auto& w = test::sketchWorld();
     StrokeReader reader(test::device(), w.model, w.candidateFaces, w.flags);
-    auto strayShare = [&](int anchorRings) {
+    RegionCandidates own(w.model.triangles, w.model.vertexCount(), w.flags);
+    ContourParams contour;
+    contour.silhouetteThreshold = defaultSilhouetteThreshold(w.model.vertexCount());
+    struct Count {
+        int passVertices = 0, offFirst = 0, offLines = 0; // off the first reading; and not on a silhouette either
+    };
+    auto count = [&](int anchorRings) {
         RefineOptions o;
         o.anchorRings = anchorRings;
-        int passVertices = 0, stray = 0;
-        for (int f = 0; f < 2; ++f) {
+        Count c;
+        for (int f = 0; f < static_cast<int>(w.testFaces.size()); ++f) {
             TrackingModel t(w.model);
             for (const SimulatedStroke& s : strokesOf(f, { 0, 0 }, 3)) {
                 std::set<std::uint32_t> first;
                 int calls = 0;
                 readAndApply(reader, t, s.stroke, MapperKind::Hmm, {}, {}, o, [&](StrokeReading& r) {
+                    std::set<std::uint32_t> silhouette;
+                    if (calls > 0)
+                        for (const Candidate& k : own.build(t.faceMesh(), orbitCamera(s.stroke.view), contour))
+                            if (k.types & ContourSilhouette)
+                                silhouette.insert(k.vertex);
                     for (const VertexObservation& v : r.observations) {
                         if (calls == 0) {
                             first.insert(v.vertex);
                         } else {
-                            ++passVertices;
-                            stray += !first.count(v.vertex);
+                            ++c.passVertices;
+                            c.offFirst += !first.count(v.vertex);
+                            c.offLines += !first.count(v.vertex) && !silhouette.count(v.vertex);
                         }
                     }
                     ++calls;
                 });
             }
         }
-        REQUIRE(passVertices > 0);
-        return static_cast<double>(stray) / passVertices;
+        return c;
     };
-    const double anchored = strayShare(0), free = strayShare(-1);
-    INFO("pass vertices not among the first reading's: anchored " << anchored << ", not anchored " << free);
-    CHECK(anchored < 0.8 * free);
+    const Count anchored = count(0), free = count(-1);
+    INFO("pass vertices " << anchored.passVertices << " / " << free.passVertices << ", off the first reading " << anchored.offFirst << " / "
+                          << free.offFirst << ", of those not on a silhouette " << anchored.offLines << " / " << free.offLines
+                          << " (anchored / not anchored)");
+    REQUIRE(anchored.passVertices > 0);
+    CHECK(anchored.offFirst > 0);
+    CHECK(anchored.offLines == 0);
+    CHECK(free.offLines > 0);
 }
 
 TEST_CASE("refine: pass counts outside [0, 16] are refused")

@@ -220,6 +220,10 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
     }
     // Drawn last so the parameters above keep their draws from before it was added (issue 16).
     p.paranasalHollow = n(6.0, 1.0); // ICT: 4.5, then 5.7 before
+    // v16, drawn last for the same reason: lips full nearly to their corners (low) or thinning
+    // early (high); at least 1, a little above v15's 0.7 for every face, whose lips ended at
+    // the corners almost full height.
+    p.lipTaper = std::max(1.0, n(2.5, 0.5));
     return p;
 }
 

@@ -84,6 +84,7 @@ struct FaceParams {
     double cupidBow = 1;
     double philtrumDepth = 0.8;
     double cornerHeight = 0; ///< mouth corners above (+) the slit line
+    double lipTaper = 2.5;   ///< the lips' volume thins to the corners as (1 - a^2)^(lipTaper / 2), a = -1..1 (v16)
 
     // Eyes and brows.
     double fissureHeight = 10.5;

@@ -22,10 +22,12 @@ namespace {
 
 constexpr double kSide = 100.0 * M_PI / 180.0; // the grid reaches 10 degrees behind the ears
 constexpr double kSupratip = 1.0;              // mm, the supratip break's depth (bone(): nose)
-// The skin lip's shelf above and below the vermilion (soft()): from kShelfBlend mm past the
-// vermilion border on, it fades from kShelfFade of the way to each corner (v13).
+// The skin lip above and below the vermilion (soft(), lipProfile()): it fades from kShelfFade of
+// the way to each corner (v13), and it comes to rest at the nose's base, but at least
+// kUpperSpanMin and at most kUpperSpanMax mm past the upper border, and kLowerSpan mm past the
+// lower one, about where the mentolabial sulcus lies (bone()) (v16).
 constexpr double kShelfFade = 0.4;
-constexpr double kShelfBlend = 3.0; // mm
+constexpr double kUpperSpanMin = 5.0, kUpperSpanMax = 14.0, kLowerSpan = 9.0; // mm
 // The brow ridge's crest falls kBrowArch mm 20 mm to either side of the eye's centre, so the
 // ridge follows the orbit's upper rim; and the temple lies back by up to kTemporalHollow mm
 // behind the orbit's lateral rim (bone(), v14). Until v13 the ridge was a horizontal band across
@@ -187,24 +189,36 @@ double upperWeight(const Frame& f, double a, double b, int slit)
 
 // One lip's profile across it, as a fraction of its fullness: t is 0 at the slit and 1 at the
 // vermilion border (h mm from the slit). The vermilion rises from a groove at the slit to its
-// crest at t = crest and falls by `fall` to the border; beyond it the skin lip (the shelf)
-// starts at `shelf` and fades over shelfWidth mm. `lateral` is set to the taper across the
-// mouth that the profile is to be scaled by: the vermilion's own, blending into the shelf's
-// (see kShelfFade) over the shelf's first kShelfBlend mm.
+// crest at t = crest and falls by `fall` to the border; beyond it the skin lip rolls on with the
+// same slope and comes to rest w mm past the border (a cubic Hermite span: value and slope match
+// at the border, both are 0 at its end), at the nose's base for the upper lip and in the
+// mentolabial sulcus for the lower. `lateral` is set to the taper across the mouth that the
+// profile is to be scaled by: the vermilion's own, blending into the skin lip's (see kShelfFade)
+// over the span.
+//
+// v16 (docs/realism.md, "Now (4 December, v16)"): until v15 the vermilion fell to 0.7 (upper) or
+// 0.55 (lower) at the border with a slope near 1 mm/mm and a flat shelf began there, a concave
+// kink that drew a light line round each lip on the curvature maps, and the shelf ended 6-7 mm
+// on, so each lip read as a slab with a rim. Now the upper lip is one convex mound from the slit
+// to the nose, as ICT-FaceKit's mean face is.
 struct LipShape {
-    double crest, crestToBorder, fall, shelf, shelfWidth;
+    double crest, fall;
 };
-constexpr LipShape kUpperLip { 0.55, 0.45, 0.3, 0.7, 7 }, kLowerLip { 0.5, 0.5, 0.45, 0.55, 6 };
+constexpr LipShape kUpperLip { 0.6, 0.08 }, kLowerLip { 0.55, 0.1 };
 
-double lipProfile(const LipShape& lip, double t, double h, double vermilionTaper, double shelfTaper, double& lateral)
+double lipProfile(const LipShape& lip, double t, double h, double w, double vermilionTaper, double shelfTaper, double& lateral)
 {
     lateral = vermilionTaper;
     if (t < lip.crest)
         return -0.35 + 1.35 * (1 - sq(1 - t / lip.crest));
     if (t < 1)
-        return 1 - lip.fall * sq((t - lip.crest) / lip.crestToBorder);
-    lateral = lerp(vermilionTaper, shelfTaper, smoothstep(0, kShelfBlend, (t - 1) * h));
-    return lip.shelf * std::exp(-sq((t - 1) * h / lip.shelfWidth));
+        return 1 - lip.fall * sq((t - lip.crest) / (1 - lip.crest));
+    const double s = (t - 1) * h;
+    lateral = lerp(vermilionTaper, shelfTaper, smoothstep(0, w, s));
+    if (s >= w)
+        return 0;
+    const double u = s / w, atBorder = 1 - lip.fall, slopeTimesW = -2 * lip.fall / ((1 - lip.crest) * h) * w;
+    return atBorder * (2 * u * u * u - 3 * u * u + 1) + slopeTimesW * u * sq(1 - u);
 }
 
 // Soft tissue, evaluated where the vertex sits in the neutral face so it moves with the skin:
@@ -216,36 +230,38 @@ double soft(const Frame& f, double theta0, double phi0, double X, double Y, int 
     const double b = midY(f, phi0) - f.ySto, a = theta0 / f.thetaCh;
     double r = 0;
 
-    // Lips: vermilion bulges meeting in a groove at the slit, thinning to the corners. Above the
-    // upper vermilion and below the lower one the skin lip (the shelf) stands out too; the
-    // vermilion ends at the corners with a crease (the commissure), and the shelf, a few mm
-    // (kShelfBlend) from the border on, fades smoothly inside them from kShelfFade of the way out:
-    // scaled by the vermilion's taper all the way, whose slope is infinite at the corners, its
-    // sides were vertical creases above and below them, a box round the mouth (docs/realism.md,
-    // curvature maps).
+    // Lips: vermilion bulges meeting in a groove at the slit, thinning to the corners; the skin
+    // lip rolls on from each border (lipProfile) and fades smoothly inside the corners from
+    // kShelfFade of the way out (until v13 it was scaled by the vermilion's taper all the way,
+    // whose slope is infinite at the corners: vertical creases above and below them, a box round
+    // the mouth; docs/realism.md, curvature maps). The vermilion ends at the corners with a crease
+    // (the commissure). Its volume thins towards them as taper^lipTaper, a parameter of the face
+    // (v16; 0.7 for every face until v15, which kept each lip nearly full height to within a few
+    // mm of its corner, a crescent-ended slab from the front).
     const bool upper = b > 1e-9 || (std::abs(b) <= 1e-9 && slit >= 0);
     const double press = 1 - 0.55 * act.lipPress;
     // Both tapers are 0 from the corners out (|a| >= 1), so the lips add nothing there.
     const double taper = std::abs(a) < 1 ? std::sqrt(1 - a * a) : 0.0;
-    const double vermilionTaper = std::pow(taper, 0.7);
+    const double vermilionTaper = std::pow(taper, p.lipTaper);
     const double shelfTaper = 1 - smoothstep(kShelfFade, 1, std::abs(a));
+    const double snB = f.ySn - f.ySto;
     if (upper) {
         const double h = p.upperVermilion * (0.3 + 0.7 * taper)
             * (1 - 0.1 * p.cupidBow * std::exp(-sq(a / 0.09)) + 0.05 * p.cupidBow * std::exp(-sq((std::abs(a) - 0.22) / 0.1)));
+        const double span = std::clamp(snB - h, kUpperSpanMin, kUpperSpanMax);
         double lateral;
-        const double shape = lipProfile(kUpperLip, b / h, h, vermilionTaper, shelfTaper, lateral);
+        const double shape = lipProfile(kUpperLip, b / h, h, span, vermilionTaper, shelfTaper, lateral);
         r += p.upperLipFullness * press * lateral * shape;
     } else {
         const double h = p.lowerVermilion * (0.3 + 0.7 * taper);
         double lateral;
-        const double shape = lipProfile(kLowerLip, -b / h, h, vermilionTaper, shelfTaper, lateral);
+        const double shape = lipProfile(kLowerLip, -b / h, h, kLowerSpan, vermilionTaper, shelfTaper, lateral);
         r += (p.lowerLipFullness * press - act.lowerLipTuck) * lateral * shape;
     }
     r -= 1.0 * std::exp(-sq((ax - half) / 4) - sq(b / 4)); // commissure
     r += act.lipsForward * std::exp(-std::pow(X / (half + 4), 4) - std::pow((b + 1) / 13, 4));
 
     // Philtrum: a groove between two ridges from the vermilion border to the nose.
-    const double snB = f.ySn - f.ySto;
     const double window = smoothstep(p.upperVermilion * 0.9, p.upperVermilion * 1.3, b) * (1 - smoothstep(snB - 5, snB, b));
     r += p.philtrumDepth * window * (0.35 * std::exp(-sq((ax - 5) / 1.8)) - std::exp(-sq(X / 2.6)));
 
@@ -267,10 +283,15 @@ double soft(const Frame& f, double theta0, double phi0, double X, double Y, int 
     // own parameters set its mean shape: 15% of a mean field's slope there tilts the flat
     // lobule so its most forward point leaves prn. A face's own variation keeps 15%.
     const auto [fields, meanFields] = shapeFieldSums(p.shapeModes, shapeFieldMeans(), theta0, phi0);
+    // The mean fields are calmed over a wider, softer window round the lips than a face's own
+    // variation (v16): the mean fields stand well forward there (fitted without the lips), and
+    // the variation's window, exp(-u^4 - v^4), rises so steeply 12 mm above the slit that the
+    // mean fields' return drew a concave line across the skin lip just above the vermilion.
     const double lips = std::exp(-std::pow(X / (half + 6), 4) - std::pow(b / 12, 4));
+    const double lipsMean = std::exp(-sq(X / (half + 10)) - sq(b / 16));
     const double nose = std::exp(-std::pow(X / 16, 4) - std::pow((Y - f.yPrn - 6) / 22, 4));
     const double eyes = std::exp(-std::pow((ax - f.xEye) / 25, 4) - std::pow((Y - 1) / 19, 4));
-    r += (fields - meanFields) * (1 - std::max({ lips, 0.85 * nose, eyes })) + meanFields * (1 - std::max({ lips, nose, eyes }));
+    r += (fields - meanFields) * (1 - std::max({ lips, 0.85 * nose, eyes })) + meanFields * (1 - std::max({ lipsMean, nose, eyes }));
     return r;
 }
 
