@@ -101,6 +101,7 @@ struct FaceParams {
     double cheekboneHeight = 4;  ///< radial prominence
     double cheekFullness = 2;
     double paranasalHollow = 4.5; ///< mm the cheek beside the nose and under the orbit lies back
+    double nasolabialDepth = 0.6; ///< mm, the nasolabial fold's crease (face_shape.cpp, v17)
     double jawWidth = 102;        ///< go-go
     double jawAngle = 0;          ///< squareness (-1..1 roughly)
     double chinProjection = 0;    ///< pg forward of the sn-vertical

@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace facesketch::dataset {
 
@@ -221,6 +222,54 @@ double lipProfile(const LipShape& lip, double t, double h, double w, double verm
     return atBorder * (2 * u * u * u - 3 * u * u + 1) + slopeTimesW * u * sq(1 - u);
 }
 
+// The nasolabial fold (v17): a crease from just above and outside the ala's widest point down
+// and out to below and beside the mouth's corner, bowed kNasolabialBow mm outwards (a quadratic
+// Bezier), with the cheek swelling beside it on the outside. Across it, at signed distance d mm
+// (positive towards the cheek): depth (kNasolabialBulge e^-((d - 6)/6)^2 - e^-(d/3.5)^2), faded
+// in over its first 15% and out over its last 20%. Until v16 the cheek ran into the upper lip
+// as one plane, and the curvature maps had no line where ICT-FaceKit's mean face shows the fold
+// (docs/realism.md, "Now (4 December, v17)"). ax, Y: the vertex in the neutral face, mm.
+constexpr double kNasolabialBow = 4.0, kNasolabialBulge = 0.8;
+
+double nasolabialFold(const Frame& f, double ax, double Y)
+{
+    const FaceParams& p = f.p;
+    if (p.nasolabialDepth <= 0)
+        return 0;
+    const Eigen::Vector2d A(p.alal / 2 + 1.5, lerp(f.ySn, f.yPrn, kAlaAt) + 2), B(p.chch / 2 + 8, f.ySto - 6), q(ax, Y);
+    const Eigen::Vector2d u = (B - A).normalized(), out(-u.y(), u.x());
+    const Eigen::Vector2d C = 0.5 * (A + B) + kNasolabialBow * out;
+    constexpr double kReach = 20; // mm beyond which the fold adds nothing measurable
+    const Eigen::Vector2d lo = A.cwiseMin(B).cwiseMin(C).array() - kReach, hi = A.cwiseMax(B).cwiseMax(C).array() + kReach;
+    if ((q.array() < lo.array()).any() || (q.array() > hi.array()).any())
+        return 0;
+    // Distance to the curve as a 32-segment polyline; `along` runs 0..1 from A to B and on
+    // past either end along the chord.
+    constexpr int kSegments = 32;
+    double best = std::numeric_limits<double>::infinity(), along = 0, d = 0;
+    Eigen::Vector2d prev = A;
+    for (int k = 1; k <= kSegments; ++k) {
+        const double t = static_cast<double>(k) / kSegments;
+        const Eigen::Vector2d next = sq(1 - t) * A + 2 * t * (1 - t) * C + sq(t) * B, e = next - prev;
+        const double h = std::clamp((q - prev).dot(e) / e.squaredNorm(), 0.0, 1.0);
+        const Eigen::Vector2d foot = prev + h * e;
+        const double dd = (q - foot).squaredNorm();
+        if (dd < best) {
+            best = dd;
+            along = (k - 1 + h) / kSegments;
+            d = ((q - foot).dot(Eigen::Vector2d(-e.y(), e.x())) >= 0 ? 1 : -1) * std::sqrt(dd);
+        }
+        prev = next;
+    }
+    const double chord = (B - A).norm();
+    if (along <= 0)
+        along = (q - A).dot(u) / chord;
+    else if (along >= 1)
+        along = 1 + (q - B).dot(u) / chord;
+    const double fade = smoothstep(-0.1, 0.15, along) * (1 - smoothstep(0.8, 1.15, along));
+    return p.nasolabialDepth * fade * (kNasolabialBulge * std::exp(-sq((d - 6) / 6)) - std::exp(-sq(d / 3.5)));
+}
+
 // Soft tissue, evaluated where the vertex sits in the neutral face so it moves with the skin:
 // lips, philtrum, cheeks, eyebrows, fine detail, and the pose's radial offsets.
 double soft(const Frame& f, double theta0, double phi0, double X, double Y, int slit, const FaceActions& act)
@@ -264,6 +313,8 @@ double soft(const Frame& f, double theta0, double phi0, double X, double Y, int 
     // Philtrum: a groove between two ridges from the vermilion border to the nose.
     const double window = smoothstep(p.upperVermilion * 0.9, p.upperVermilion * 1.3, b) * (1 - smoothstep(snB - 5, snB, b));
     r += p.philtrumDepth * window * (0.35 * std::exp(-sq((ax - 5) / 1.8)) - std::exp(-sq(X / 2.6)));
+
+    r += nasolabialFold(f, ax, Y);
 
     // Cheeks, eyebrows, nose wrinkles.
     r += p.cheekFullness * std::exp(-sq((ax - (half + 17)) / 15) - sq((b - 12) / 16));
