@@ -222,9 +222,10 @@ double lipProfile(const LipShape& lip, double t, double h, double w, double verm
     return atBorder * (2 * u * u * u - 3 * u * u + 1) + slopeTimesW * u * sq(1 - u);
 }
 
-// The nasolabial fold (v17): a crease from just above and outside the ala's widest point down
-// and out to below and beside the mouth's corner, bowed kNasolabialBow mm outwards (a quadratic
-// Bezier), with the cheek swelling beside it on the outside. Across it, at signed distance d mm
+// The nasolabial fold (v17): a crease from just above and outside the ala's widest point (1.5
+// mm out, 2 mm above the alar lobule's centre) down and out to 8 mm beside and 6 mm below the
+// mouth's corner, bowed kNasolabialBow mm outwards (a quadratic Bezier), with the cheek swelling
+// beside it on the outside. Across it, at signed distance d mm
 // (positive towards the cheek): depth (kNasolabialBulge e^-((d - 6)/6)^2 - e^-(d/3.5)^2), faded
 // in over its first 15% and out over its last 20%. Until v16 the cheek ran into the upper lip
 // as one plane, and the curvature maps had no line where ICT-FaceKit's mean face shows the fold
