@@ -109,6 +109,7 @@ Frame makeFrame(const FaceParams& p)
     f.yGn = f.yN - std::sqrt(sq(p.ngn) - sq(f.zf - f.zGn));
     f.yPg = f.yGn + std::min(11.0, 0.35 * (f.ySto - f.yGn));
     f.zPg = f.zf + p.chinProjection - 1;
+    f.fold = nasolabialCurve(f);
     const double slope = p.foreheadSlope;
 
     // Midline profile without nose, lips and chin boss: (y, z) pairs top to bottom.

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -101,6 +102,18 @@ struct Eye {
     double a = 12, b = 12, c = 12; // semi-axes along right, up, forward
 };
 
+// The nasolabial fold's centre line in the neutral face's (|x|, y) plane, mm: a quadratic Bezier
+// from `a` to `b` as kSegments straight pieces, and the box outside which the fold adds nothing.
+// The same for every vertex of a face, so makeFrame builds it once (nasolabialCurve()).
+struct NasolabialCurve {
+    static constexpr int kSegments = 32;
+    Eigen::Vector2d a = Eigen::Vector2d::Zero(), b = Eigen::Vector2d::Zero();
+    Eigen::Vector2d along = Eigen::Vector2d::UnitY(); // unit chord, a to b
+    double chord = 1;                                 // |b - a|
+    Eigen::Vector2d lo = Eigen::Vector2d::Zero(), hi = Eigen::Vector2d::Zero();
+    std::array<Eigen::Vector2d, kSegments + 1> points {};
+};
+
 // Everything derived from FaceParams that the per-vertex evaluation needs.
 struct Frame {
     FaceParams p;
@@ -116,6 +129,7 @@ struct Frame {
     double mouthScale = 140; // mm per radian of elevation near the mouth (midline height)
     double xEye = 31;        // eyeball centre, base x
     Eye eye[2];              // right (-x), left (+x)
+    NasolabialCurve fold;    // built before the first neutralRadius() call
 };
 
 /// Height of the base midline at elevation phi (mm): the vertical coordinate of the mouth
@@ -130,6 +144,9 @@ Eigen::Vector3d direction(double theta, double phi);
 
 /// The frame of one face: targets from `p`, then the grid's knot angles solved on the skin.
 Frame makeFrame(const FaceParams& p);
+/// The nasolabial fold's centre line from the frame's landmark targets (al-al, ch-ch, sn, prn,
+/// sto); defined in face_shape.cpp beside the fold's other constants.
+NasolabialCurve nasolabialCurve(const Frame& f);
 /// Skin radius of the neutral face along (theta, phi); defined in face_shape.cpp.
 double neutralRadius(const Frame& f, double theta, double phi);
 

@@ -235,41 +235,59 @@ constexpr double kNasolabialBow = 4.0, kNasolabialBulge = 0.8;
 double nasolabialFold(const Frame& f, double ax, double Y)
 {
     const FaceParams& p = f.p;
+    const NasolabialCurve& c = f.fold;
     if (p.nasolabialDepth <= 0)
         return 0;
-    const Eigen::Vector2d A(p.alal / 2 + 1.5, lerp(f.ySn, f.yPrn, kAlaAt) + 2), B(p.chch / 2 + 8, f.ySto - 6), q(ax, Y);
-    const Eigen::Vector2d u = (B - A).normalized(), out(-u.y(), u.x());
-    const Eigen::Vector2d C = 0.5 * (A + B) + kNasolabialBow * out;
-    constexpr double kReach = 20; // mm beyond which the fold adds nothing measurable
-    const Eigen::Vector2d lo = A.cwiseMin(B).cwiseMin(C).array() - kReach, hi = A.cwiseMax(B).cwiseMax(C).array() + kReach;
-    if ((q.array() < lo.array()).any() || (q.array() > hi.array()).any())
+    const Eigen::Vector2d q(ax, Y);
+    if ((q.array() < c.lo.array()).any() || (q.array() > c.hi.array()).any())
         return 0;
-    // Distance to the curve as a 32-segment polyline; `along` runs 0..1 from A to B and on
-    // past either end along the chord.
-    constexpr int kSegments = 32;
+    // Distance to the polyline; `along` runs 0..1 from a to b and on past either end along the
+    // chord.
     double best = std::numeric_limits<double>::infinity(), along = 0, d = 0;
-    Eigen::Vector2d prev = A;
-    for (int k = 1; k <= kSegments; ++k) {
-        const double t = static_cast<double>(k) / kSegments;
-        const Eigen::Vector2d next = sq(1 - t) * A + 2 * t * (1 - t) * C + sq(t) * B, e = next - prev;
+    for (int k = 1; k <= NasolabialCurve::kSegments; ++k) {
+        const Eigen::Vector2d& prev = c.points[static_cast<size_t>(k - 1)];
+        const Eigen::Vector2d e = c.points[static_cast<size_t>(k)] - prev;
         const double h = std::clamp((q - prev).dot(e) / e.squaredNorm(), 0.0, 1.0);
         const Eigen::Vector2d foot = prev + h * e;
         const double dd = (q - foot).squaredNorm();
         if (dd < best) {
             best = dd;
-            along = (k - 1 + h) / kSegments;
+            along = (k - 1 + h) / NasolabialCurve::kSegments;
             d = ((q - foot).dot(Eigen::Vector2d(-e.y(), e.x())) >= 0 ? 1 : -1) * std::sqrt(dd);
         }
-        prev = next;
     }
-    const double chord = (B - A).norm();
     if (along <= 0)
-        along = (q - A).dot(u) / chord;
+        along = (q - c.a).dot(c.along) / c.chord;
     else if (along >= 1)
-        along = 1 + (q - B).dot(u) / chord;
+        along = 1 + (q - c.b).dot(c.along) / c.chord;
     const double fade = smoothstep(-0.1, 0.15, along) * (1 - smoothstep(0.8, 1.15, along));
     return p.nasolabialDepth * fade * (kNasolabialBulge * std::exp(-sq((d - 6) / 6)) - std::exp(-sq(d / 3.5)));
 }
+
+} // namespace
+
+NasolabialCurve detail::nasolabialCurve(const Frame& f)
+{
+    const FaceParams& p = f.p;
+    NasolabialCurve c;
+    c.a = Eigen::Vector2d(p.alal / 2 + 1.5, lerp(f.ySn, f.yPrn, kAlaAt) + 2);
+    c.b = Eigen::Vector2d(p.chch / 2 + 8, f.ySto - 6);
+    c.along = (c.b - c.a).normalized();
+    c.chord = (c.b - c.a).norm();
+    const Eigen::Vector2d out(-c.along.y(), c.along.x());
+    const Eigen::Vector2d control = 0.5 * (c.a + c.b) + kNasolabialBow * out;
+    constexpr double kReach = 20; // mm beyond which the fold adds nothing measurable
+    c.lo = c.a.cwiseMin(c.b).cwiseMin(control).array() - kReach;
+    c.hi = c.a.cwiseMax(c.b).cwiseMax(control).array() + kReach;
+    c.points[0] = c.a;
+    for (int k = 1; k <= NasolabialCurve::kSegments; ++k) {
+        const double t = static_cast<double>(k) / NasolabialCurve::kSegments;
+        c.points[static_cast<size_t>(k)] = sq(1 - t) * c.a + 2 * t * (1 - t) * control + sq(t) * c.b;
+    }
+    return c;
+}
+
+namespace {
 
 // Soft tissue, evaluated where the vertex sits in the neutral face so it moves with the skin:
 // lips, philtrum, cheeks, eyebrows, fine detail, and the pose's radial offsets.
