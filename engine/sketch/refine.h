@@ -17,7 +17,9 @@
 // reading decides which line a stroke draws, the passes where on the face that line lies.
 //
 // Measured (`facesketch eval strokes`, 1 px noise, the HMM first, ratios to the mean face's
-// error, front / profile / 34 / all views): built-in high set, 20 test faces, 0.560 / 0.481 /
+// error, front / profile / 34 / all views; when the passes were chosen, on the built-in faces of
+// generator v15, 4 December: later versions' figures are in docs/sketching.md and
+// docs/realism.md): built-in high set, 20 test faces, 0.560 / 0.481 /
 // 0.567 / 0.307 without refinement, 0.558 / 0.439 / 0.412 / 0.293 with two free passes, 0.570 /
 // 0.441 / 0.429 / 0.288 anchored; its 48 contour faces 0.618 / 0.525 / 0.517 / 0.337, 0.583 /
 // 0.482 / 0.509 / 0.294 and 0.592 / 0.463 / 0.500 / 0.289; ICT-FaceKit import, 20 test faces,
@@ -38,7 +40,7 @@ namespace facesketch::sketch {
 struct RefineOptions {
     /// Passes after the first reading (0: the first reading alone, as the thesis reads). Two
     /// here: one takes the 34 view from 0.567 to 0.433 and two to 0.412, a third gains 0.005
-    /// and costs the front view 0.012 (built-in high set, free passes, docs/sketching.md).
+    /// and costs the front view 0.012 (built-in high set of v15, free passes, docs/sketching.md).
     int passes = 2;
     /// The mapper of the passes; empty: the first reading's own.
     std::optional<MapperKind> mapper = MapperKind::Simple;
@@ -46,7 +48,7 @@ struct RefineOptions {
     /// rings of a vertex the first reading mapped (silhouettes anywhere: ReadAnchor); -1: all
     /// of them. 2 (-1 before 4 December, night): a stroke that runs between two of the face's
     /// own lines stays on the one the first reading chose. Chosen on the 48 contour faces
-    /// (HMM, 1 px: 0.583 / 0.482 / 0.509 / 0.294 -> 0.592 / 0.463 / 0.500 / 0.289, front /
+    /// of v15 (HMM, 1 px: 0.583 / 0.482 / 0.509 / 0.294 -> 0.592 / 0.463 / 0.500 / 0.289, front /
     /// profile / 34 / all); the ICT-FaceKit import agrees (0.642 / 0.491 / 0.457 / 0.376 ->
     /// 0.631 / 0.463 / 0.459 / 0.364; strokes wandering 4 px 0.736 / 0.560 / 0.545 / 0.477 ->
     /// 0.679 / 0.543 / 0.551 / 0.459), the built-in test faces lose 0.012 and 0.017 from the
