@@ -20,7 +20,7 @@ cd "$WORK"
 # Its folder as app/gui/cmd_gui.cpp's builtInFolder() names it.
 "$FACESKETCH" gui --quit-after-frames 2 > app.log 2>&1
 if [ -n "${FACESKETCH_CACHE_DIR:-}" ]; then cache=$FACESKETCH_CACHE_DIR; else cache=${XDG_CACHE_HOME:-$HOME/.cache}/facesketch; fi
-builtin=$cache/builtin-high-v17
+builtin=$cache/builtin-high-v18
 "$FACESKETCH" strokes simulate "$builtin/faces" --model "$builtin/faces.model" --sample face_0230 --view front -o front.json > /dev/null
 "$FACESKETCH" gui front.json --size 1280x800 --screenshot "$out/gui-sketch.png" --quit-after-frames 40 > app.log 2>&1
 "$FACESKETCH" gui front.json --size 1280x800 --overlay --screenshot "$out/gui-overlay.png" --quit-after-frames 40 > app.log 2>&1

@@ -28,6 +28,9 @@ constexpr double kSupratip = 1.0;              // mm, the supratip break's depth
 // kUpperSpanMin and at most kUpperSpanMax mm past the upper border, and kLowerSpan mm past the
 // lower one, about where the mentolabial sulcus lies (bone()) (v16).
 constexpr double kShelfFade = 0.4;
+// Below gn the population's mean fields fade out (soft(), v18): from kUnderChinFrom rad (about
+// 8 mm) below gn, over kUnderChinOver rad.
+constexpr double kUnderChinFrom = 0.06, kUnderChinOver = 0.1;
 constexpr double kUpperSpanMin = 5.0, kUpperSpanMax = 14.0, kLowerSpan = 9.0; // mm
 // The brow ridge's crest falls kBrowArch mm 20 mm to either side of the eye's centre, so the
 // ridge follows the orbit's upper rim; and the temple lies back by up to kTemporalHollow mm
@@ -361,7 +364,17 @@ double soft(const Frame& f, double theta0, double phi0, double X, double Y, int 
     const double lipsMean = std::exp(-sq(X / (half + 10)) - sq(b / 16));
     const double nose = std::exp(-std::pow(X / 16, 4) - std::pow((Y - f.yPrn - 6) / 22, 4));
     const double eyes = std::exp(-std::pow((ax - f.xEye) / 25, 4) - std::pow((Y - 1) / 19, 4));
-    r += (fields - meanFields) * (1 - std::max({ lips, 0.85 * nose, eyes })) + meanFields * (1 - std::max({ lipsMean, nose, eyes }));
+    // Under the chin the mean fields fade out from kUnderChinFrom to kUnderChinFrom +
+    // kUnderChinOver rad below gn (v18). The lowest row of mean fields is -8.1 mm on the midline
+    // and about 0 beside it; down to gn the profile's knots take the midline back out to its
+    // targets, but below gn nothing does, so the fields left a trough along the midline under
+    // the chin, and the mask's lower border (a grid row of one elevation) rose 2.5-3 mm at the
+    // midline between two low points: seen from the front, a wavy lower edge. Faded from gn
+    // itself the chin's region moves 1.56 mm RMS from ICT-FaceKit's (1.17 before): near gn
+    // ICT's face asks for what the fields give.
+    const double underChin = smoothstep(f.phiGn - kUnderChinFrom, f.phiGn - kUnderChinFrom - kUnderChinOver, phi0);
+    r += (fields - meanFields) * (1 - std::max({ lips, 0.85 * nose, eyes }))
+        + meanFields * (1 - std::max({ lipsMean, nose, eyes })) * (1 - underChin);
     return r;
 }
 
