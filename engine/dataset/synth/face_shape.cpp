@@ -368,10 +368,12 @@ double soft(const Frame& f, double theta0, double phi0, double X, double Y, int 
     // kUnderChinOver rad below gn (v18). The lowest row of mean fields is -8.1 mm on the midline
     // and about 0 beside it; down to gn the profile's knots take the midline back out to its
     // targets, but below gn nothing does, so the fields left a trough along the midline under
-    // the chin, and the mask's lower border (a grid row of one elevation) rose 2.5-3 mm at the
-    // midline between two low points: seen from the front, a wavy lower edge. Faded from gn
-    // itself the chin's region moves 1.56 mm RMS from ICT-FaceKit's (1.17 before): near gn
-    // ICT's face asks for what the fields give.
+    // the chin, and the mask's lower border (a grid row of one elevation) rose at the midline
+    // between two low points: seen from the front, a wavy lower edge (1.42 mm on average over
+    // the first 40 faces, up to 7.0; 0.66 and 4.9 mm now, the rest from each face's own fields,
+    // which keep the spectrum's 15 modes and so stay). Faded from gn itself the chin's region
+    // moves 1.56 mm RMS from ICT-FaceKit's (1.17 before): near gn ICT's face asks for what the
+    // fields give (docs/realism.md, v18).
     const double underChin = smoothstep(f.phiGn - kUnderChinFrom, f.phiGn - kUnderChinFrom - kUnderChinOver, phi0);
     r += (fields - meanFields) * (1 - std::max({ lips, 0.85 * nose, eyes }))
         + meanFields * (1 - std::max({ lipsMean, nose, eyes })) * (1 - underChin);
