@@ -103,13 +103,13 @@ struct Eye {
 };
 
 // The nasolabial fold's centre line in the neutral face's (|x|, y) plane, mm: a quadratic Bezier
-// from `a` to `b` as kSegments straight pieces, and the box outside which the fold adds nothing.
-// The same for every vertex of a face, so makeFrame builds it once (nasolabialCurve()).
+// from points.front() to points.back() as kSegments straight pieces, and the box outside which
+// the fold adds nothing. The same for every vertex of a face, so makeFrame builds it once
+// (nasolabialCurve()).
 struct NasolabialCurve {
     static constexpr int kSegments = 32;
-    Eigen::Vector2d a = Eigen::Vector2d::Zero(), b = Eigen::Vector2d::Zero();
-    Eigen::Vector2d along = Eigen::Vector2d::UnitY(); // unit chord, a to b
-    double chord = 1;                                 // |b - a|
+    Eigen::Vector2d along = Eigen::Vector2d::UnitY(); // unit chord, front to back
+    double chord = 1;                                 // |back - front|
     Eigen::Vector2d lo = Eigen::Vector2d::Zero(), hi = Eigen::Vector2d::Zero();
     std::array<Eigen::Vector2d, kSegments + 1> points {};
 };

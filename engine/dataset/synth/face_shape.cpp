@@ -244,8 +244,8 @@ double nasolabialFold(const Frame& f, double ax, double Y)
     const Eigen::Vector2d q(ax, Y);
     if ((q.array() < c.lo.array()).any() || (q.array() > c.hi.array()).any())
         return 0;
-    // Distance to the polyline; `along` runs 0..1 from a to b and on past either end along the
-    // chord.
+    // Distance to the polyline; `along` runs 0..1 from its front to its back and on past either
+    // end along the chord.
     double best = std::numeric_limits<double>::infinity(), along = 0, d = 0;
     for (int k = 1; k <= NasolabialCurve::kSegments; ++k) {
         const Eigen::Vector2d& prev = c.points[static_cast<size_t>(k - 1)];
@@ -260,9 +260,9 @@ double nasolabialFold(const Frame& f, double ax, double Y)
         }
     }
     if (along <= 0)
-        along = (q - c.a).dot(c.along) / c.chord;
+        along = (q - c.points.front()).dot(c.along) / c.chord;
     else if (along >= 1)
-        along = 1 + (q - c.b).dot(c.along) / c.chord;
+        along = 1 + (q - c.points.back()).dot(c.along) / c.chord;
     const double fade = smoothstep(-0.1, 0.15, along) * (1 - smoothstep(0.8, 1.15, along));
     return p.nasolabialDepth * fade * (kNasolabialBulge * std::exp(-sq((d - 6) / 6)) - std::exp(-sq(d / 3.5)));
 }
@@ -273,19 +273,18 @@ NasolabialCurve detail::nasolabialCurve(const Frame& f)
 {
     const FaceParams& p = f.p;
     NasolabialCurve c;
-    c.a = Eigen::Vector2d(p.alal / 2 + 1.5, lerp(f.ySn, f.yPrn, kAlaAt) + 2);
-    c.b = Eigen::Vector2d(p.chch / 2 + 8, f.ySto - 6);
-    c.along = (c.b - c.a).normalized();
-    c.chord = (c.b - c.a).norm();
+    const Eigen::Vector2d a(p.alal / 2 + 1.5, lerp(f.ySn, f.yPrn, kAlaAt) + 2), b(p.chch / 2 + 8, f.ySto - 6);
+    c.along = (b - a).normalized();
+    c.chord = (b - a).norm();
     const Eigen::Vector2d out(-c.along.y(), c.along.x());
-    const Eigen::Vector2d control = 0.5 * (c.a + c.b) + kNasolabialBow * out;
+    const Eigen::Vector2d control = 0.5 * (a + b) + kNasolabialBow * out;
     constexpr double kReach = 20; // mm beyond which the fold adds nothing measurable
-    c.lo = c.a.cwiseMin(c.b).cwiseMin(control).array() - kReach;
-    c.hi = c.a.cwiseMax(c.b).cwiseMax(control).array() + kReach;
-    c.points[0] = c.a;
+    c.lo = a.cwiseMin(b).cwiseMin(control).array() - kReach;
+    c.hi = a.cwiseMax(b).cwiseMax(control).array() + kReach;
+    c.points[0] = a;
     for (int k = 1; k <= NasolabialCurve::kSegments; ++k) {
         const double t = static_cast<double>(k) / NasolabialCurve::kSegments;
-        c.points[static_cast<size_t>(k)] = sq(1 - t) * c.a + 2 * t * (1 - t) * control + sq(t) * c.b;
+        c.points[static_cast<size_t>(k)] = sq(1 - t) * a + 2 * t * (1 - t) * control + sq(t) * b;
     }
     return c;
 }
