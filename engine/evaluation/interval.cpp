@@ -55,4 +55,17 @@ Interval bootstrapRatio(const std::vector<double>& numerators, const std::vector
     return { at(0.025), at(0.975) };
 }
 
+Interval bootstrapRatioDifference(
+    const std::vector<double>& a, const std::vector<double>& b, const std::vector<double>& denominators, int resamples, std::uint64_t seed)
+{
+    if (a.size() != b.size())
+        fail("bootstrapRatioDifference: ", a.size(), " values of the first ratio but ", b.size(), " of the second");
+    // The difference of the ratios is one ratio whose numerators are the faces' differences
+    // (which may be negative; only the denominators must not be).
+    std::vector<double> differences(a.size());
+    for (size_t i = 0; i < a.size(); ++i)
+        differences[i] = a[i] - b[i];
+    return bootstrapRatio(differences, denominators, resamples, seed);
+}
+
 } // namespace facesketch::evaluation

@@ -27,4 +27,12 @@ struct Interval {
 Interval bootstrapRatio(
     const std::vector<double>& numerators, const std::vector<double>& denominators, int resamples = 2000, std::uint64_t seed = 1);
 
+/// The 95% interval of the difference of two ratios over the same faces and denominators,
+/// (sum(a) - sum(b)) / sum(denominators): two mappers scored on the same test faces against the
+/// same mean-face errors. The faces are resampled in pairs, so what makes one face hard for both
+/// cancels; two ratios whose own intervals overlap can still differ beyond doubt when one is
+/// lower on nearly every face. Throws as bootstrapRatio, and for `a` and `b` of other sizes.
+Interval bootstrapRatioDifference(const std::vector<double>& a, const std::vector<double>& b, const std::vector<double>& denominators,
+    int resamples = 2000, std::uint64_t seed = 1);
+
 } // namespace facesketch::evaluation

@@ -261,6 +261,7 @@ StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data
         }
     }
 
+    const auto nearest = std::find(options.mappers.begin(), options.mappers.end(), sketch::MapperKind::Nearest);
     for (const std::string& view : viewNames)
         for (size_t m = 0; m < options.mappers.size(); ++m) {
             const Sums& s = sums[{ view, static_cast<int>(m) }];
@@ -293,6 +294,17 @@ StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data
                 r.acrossMm = s.acrossMm / static_cast<double>(s.across);
             if (s.acrossStrokes > 0)
                 r.misread = static_cast<double>(s.misread) / s.acrossStrokes;
+            if (nearest != options.mappers.end() && options.mappers[m] != sketch::MapperKind::Nearest && s.faces > 0) {
+                // The same faces in the same order: the per-face errors pair up.
+                const Sums& b = sums[{ view, static_cast<int>(nearest - options.mappers.begin()) }];
+                PairedDifference p;
+                p.baseline = sketch::mapperName(sketch::MapperKind::Nearest);
+                p.difference = (s.mean - b.mean) / s.meanFace;
+                p.interval = bootstrapRatioDifference(s.faceMeans, b.faceMeans, s.meanFaceMeans);
+                for (size_t f = 0; f < s.faceMeans.size(); ++f)
+                    p.betterFaces += s.faceMeans[f] < b.faceMeans[f];
+                r.versusNearest = p;
+            }
             result.records.push_back(r);
         }
     return result;

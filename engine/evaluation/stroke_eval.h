@@ -18,6 +18,7 @@
 #include "stats/face_model.h"
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,18 @@ struct StrokeEvalOptions {
     std::function<void(const std::string&)> progress;
 };
 
+/// One mapper against another on the same faces and strokes.
+struct PairedDifference {
+    std::string baseline; ///< the other mapper
+    /// This record's ratio minus the baseline's in the same view (negative: this mapper rebuilds
+    /// better), and its 95% interval with the faces resampled in pairs
+    /// (evaluation::bootstrapRatioDifference): "better" is a finding only when the whole
+    /// interval lies under 0.
+    double difference = 0;
+    Interval interval;
+    int betterFaces = 0; ///< faces this mapper rebuilt with a lower mean error than the baseline
+};
+
 /// One (view, mapper) over every test face.
 struct StrokeEvalRecord {
     std::string view, mapper;
@@ -111,6 +124,10 @@ struct StrokeEvalRecord {
     /// line (a lower lip onto the upper). Few, but each costs the face far more than the
     /// scattered errors of a good reading (docs/sketching.md, "How far the front view can go").
     double misread = 0;
+    /// Against the nearest mapper, when it was run too and this record is another mapper's
+    /// (issue 12's bar: the HMM beats nearest in every view). Its ratio's own interval is wide
+    /// with 20 faces; paired on the same faces, a difference of a few hundredths can be certain.
+    std::optional<PairedDifference> versusNearest;
 };
 
 /// The median across-stroke error (mm) above which StrokeEvalRecord::misread counts a stroke.

@@ -1,6 +1,7 @@
 // Tests of evaluation/interval: the bootstrap interval of a ratio of means against cases with a
 // known answer (equal ratios, one face), its coverage of a known true ratio over many
-// independent draws, its width falling as the faces grow in number, determinism, bad input.
+// independent draws, its width falling as the faces grow in number, determinism, bad input; and
+// the paired difference of two ratios over the same faces.
 #include "evaluation/interval.h"
 
 #include "core/error.h"
@@ -94,6 +95,52 @@ TEST_CASE("interval: a seed names one interval")
     REQUIRE(x.low != z.low);
 }
 
+TEST_CASE("interval: paired on the same faces, a difference far inside both ratios' intervals is certain, and covered")
+{
+    // Two mappers on the same 20 faces: the second rebuilds each face 0.03 of its mean-face
+    // error better, give or take 0.01; which faces are hard is shared (spread 0.15). The true
+    // difference of the ratios is -0.03. Each ratio's own interval is about 0.13 wide, so the
+    // two overlap; the paired one is about 2 x 1.96 x 0.01 / sqrt(20) = 0.009 wide, under 0.
+    Random random(13);
+    int covered = 0, certain = 0, overlapping = 0;
+    const int draws = 400;
+    double width = 0;
+    for (int d = 0; d < draws; ++d) {
+        std::vector<double> first, denominators, second;
+        drawFaces(random, 20, first, denominators);
+        for (size_t i = 0; i < first.size(); ++i)
+            second.push_back(first[i] + denominators[i] * (-0.03 + 0.01 * random.normal()));
+        const Interval p = bootstrapRatioDifference(second, first, denominators, 1000, static_cast<std::uint64_t>(d) + 1);
+        const Interval i1 = bootstrapRatio(first, denominators, 1000, 1), i2 = bootstrapRatio(second, denominators, 1000, 1);
+        REQUIRE(p.low <= p.high);
+        covered += p.low <= -0.03 && -0.03 <= p.high;
+        certain += p.high < 0;
+        overlapping += i2.high > i1.low;
+        width += p.high - p.low;
+    }
+    INFO("coverage " << static_cast<double>(covered) / draws << ", certain " << certain << ", overlapping " << overlapping
+                     << ", mean width " << width / draws);
+    REQUIRE(covered > 0.90 * draws);
+    REQUIRE(covered < 0.99 * draws);
+    REQUIRE(certain == draws);
+    REQUIRE(overlapping == draws);
+    REQUIRE(width / draws == Approx(0.009).margin(0.002));
+
+    // Swapped, the difference changes sign; the same faces with no difference give 0 at both ends.
+    std::vector<double> a, b;
+    drawFaces(random, 20, a, b);
+    const Interval none = bootstrapRatioDifference(a, a, b);
+    REQUIRE(none.low == 0);
+    REQUIRE(none.high == 0);
+    std::vector<double> c(a);
+    for (size_t i = 0; i < c.size(); ++i)
+        c[i] += 0.1 * b[i];
+    const Interval up = bootstrapRatioDifference(c, a, b), down = bootstrapRatioDifference(a, c, b);
+    REQUIRE(up.low == Approx(0.1).epsilon(1e-12));
+    REQUIRE(up.high == Approx(0.1).epsilon(1e-12));
+    REQUIRE(down.low == Approx(-0.1).epsilon(1e-12));
+}
+
 TEST_CASE("interval: bad input is refused with a message naming it")
 {
     const auto throwsWith = [](const std::vector<double>& a, const std::vector<double>& b, int resamples, const char* text) {
@@ -106,4 +153,8 @@ TEST_CASE("interval: bad input is refused with a message naming it")
     throwsWith({ 1, 2 }, { 2, INFINITY }, 2000, "face 1 has a value that is not finite");
     throwsWith({ 1, 2 }, { 2, -3 }, 2000, "face 1 has a negative denominator -3");
     throwsWith({ 1, 2 }, { 0, 0 }, 2000, "the denominators sum to 0");
+    REQUIRE_THROWS_WITH(
+        bootstrapRatioDifference({ 1, 2 }, { 1 }, { 3, 4 }), Catch::Contains("2 values of the first ratio but 1 of the second"));
+    REQUIRE_THROWS_WITH(bootstrapRatioDifference({ 1, 2 }, { 1, 2 }, { 3 }), Catch::Contains("2 numerators but 1 denominators"));
+    REQUIRE_THROWS_WITH(bootstrapRatioDifference({ 1, NAN }, { 1, 2 }, { 3, 4 }), Catch::Contains("face 1 has a value that is not finite"));
 }

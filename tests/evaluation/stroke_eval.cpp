@@ -64,11 +64,52 @@ TEST_CASE("stroke_eval: sketching test faces with their own strokes beats the me
         // Three faces read differently well: an interval of some width round the ratio.
         REQUIRE(rec.ratioInterval.low < rec.ratio);
         REQUIRE(rec.ratio < rec.ratioInterval.high);
+        REQUIRE(!rec.versusNearest); // nearest is not compared with itself
     }
     REQUIRE(r.records[2].ratio < std::min(r.records[0].ratio, r.records[1].ratio));
     REQUIRE(r.records[2].strokes == r.records[0].strokes + r.records[1].strokes);
     REQUIRE(r.kept.size() == 3); // face 0 in front, profile and all
     REQUIRE(r.kept[0].vertexError.mean() == Approx(r.kept[0].meanMm));
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("stroke_eval: every other mapper is paired with nearest on the same faces")
+{
+    const evaluation::StrokeEvalData d = smallData();
+    evaluation::StrokeEvalOptions o;
+    o.views = { { "front", { 0, 0 } } };
+    o.mappers = { sketch::MapperKind::Hmm, sketch::MapperKind::Nearest };
+    o.keepFaces = 3;
+    const evaluation::StrokeEvalResult r = evaluation::evaluateStrokes(test::device(), d, o);
+    const auto record = [&](const std::string& mapper) {
+        for (const auto& rec : r.records)
+            if (rec.view == "front" && rec.mapper == mapper)
+                return rec;
+        FAIL("no front record of " << mapper);
+        return evaluation::StrokeEvalRecord {};
+    };
+    const evaluation::StrokeEvalRecord hmm = record("hmm"), nearest = record("nearest");
+    REQUIRE(!nearest.versusNearest);
+    REQUIRE(hmm.versusNearest);
+    const evaluation::PairedDifference& p = *hmm.versusNearest;
+    INFO("hmm " << hmm.ratio << ", nearest " << nearest.ratio << ", difference " << p.difference << " (" << p.interval.low << " to "
+                << p.interval.high << "), better on " << p.betterFaces);
+    REQUIRE(p.baseline == "nearest");
+    REQUIRE(p.difference == Approx(hmm.ratio - nearest.ratio).margin(1e-12));
+    REQUIRE(p.interval.low <= p.difference);
+    REQUIRE(p.difference <= p.interval.high);
+    // The faces rebuilt better, counted again from the kept faces' own errors.
+    int better = 0;
+    for (const auto& h : r.kept)
+        if (h.view == "front" && h.mapper == "hmm")
+            for (const auto& n : r.kept)
+                if (n.view == "front" && n.mapper == "nearest" && n.face == h.face)
+                    better += h.meanMm < n.meanMm;
+    REQUIRE(p.betterFaces == better);
+    // Without nearest among the mappers there is nothing to pair with.
+    o.mappers = { sketch::MapperKind::Hmm };
+    o.keepFaces = 0;
+    REQUIRE(!evaluation::evaluateStrokes(test::device(), d, o).records.at(0).versusNearest);
     REQUIRE_NO_VALIDATION_MESSAGES();
 }
 
