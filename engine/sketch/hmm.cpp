@@ -71,7 +71,8 @@ Mapping mapHmm(const MappingProblem& problem)
     // the ring map is looked up per pair of distinct vertices, not per pair of states).
     struct Layer {
         std::vector<Eigen::Vector2d> screen, templ, strokePoint;
-        std::vector<double> depth;
+        std::vector<double> depth, templDepth;
+        std::vector<char> labelled;          // the candidate lies on a labelled line
         std::vector<int> local;              // index into vertices
         std::vector<std::uint32_t> vertices; // distinct, in order of first use
     };
@@ -86,6 +87,8 @@ Mapping mapHmm(const MappingProblem& problem)
             L.templ.push_back(problem.templateScreen[k.vertex]);
             L.strokePoint.push_back(problem.screen[static_cast<std::size_t>(nearestPoint[static_cast<std::size_t>(c)])]);
             L.depth.push_back(axis.dot(Eigen::Vector3d(k.world[0], k.world[1], k.world[2])) * ppmm);
+            L.templDepth.push_back(problem.templateDepth[k.vertex] * ppmm);
+            L.labelled.push_back((k.types & ContourLabelled) != 0);
             const auto [it, inserted] = seen.try_emplace(k.vertex, static_cast<int>(L.vertices.size()));
             if (inserted)
                 L.vertices.push_back(k.vertex);
@@ -117,8 +120,12 @@ Mapping mapHmm(const MappingProblem& problem)
                 if (params.useConnectivity)
                     logP += hopCost(a.local[sj], next.local[sq]);
                 if (params.useStroke) {
-                    // c' = screen xy and the depth along the view axis, both in pixels.
-                    const double dz = next.depth[sq] - a.depth[sj];
+                    // c' = screen xy and the depth along the view axis, both in pixels; along a
+                    // labelled line, the depth the current face's line turns through is not
+                    // charged (MapperParams::strokeDepthFromFace).
+                    double dz = next.depth[sq] - a.depth[sj];
+                    if (params.strokeDepthFromFace && a.labelled[sj] && next.labelled[sq])
+                        dz -= next.templDepth[sq] - a.templDepth[sj];
                     const double moved = std::sqrt((next.screen[sq] - a.screen[sj]).squaredNorm() + dz * dz);
                     const double step = (next.strokePoint[sq] - a.strokePoint[sj]).norm();
                     // The ratio of 4.49, its denominator at least the stroke's sampling step

@@ -104,7 +104,7 @@ void setMapperParam(MapperParams& params, const std::string& assignment)
         { "borderRings", &params.borderRings }, { "similarFaces", &params.similarFaces } };
     const std::map<std::string, bool*> flags { { "ownContours", &params.ownContours }, { "viewPlaneOnly", &params.viewPlaneOnly },
         { "acrossStrokeOnly", &params.acrossStrokeOnly }, { "useConnectivity", &params.useConnectivity },
-        { "useStroke", &params.useStroke }, { "useSkeleton", &params.useSkeleton },
+        { "useStroke", &params.useStroke }, { "strokeDepthFromFace", &params.strokeDepthFromFace }, { "useSkeleton", &params.useSkeleton },
         { "heuristicConnectivity", &params.heuristicConnectivity }, { "rtscSuggestive", &params.rtscSuggestive } };
     if (const auto r = reals.find(name); r != reals.end()) {
         *r->second = value;
@@ -326,9 +326,12 @@ StrokeReading StrokeReader::read(
         withCandidates += !perPoint[i].empty();
     }
     std::vector<Eigen::Vector2d> templateScreen(static_cast<std::size_t>(nv));
+    std::vector<double> templateDepth(static_cast<std::size_t>(nv));
+    const Eigen::Vector3d axis = viewAxis(camera);
     for (Eigen::Index v = 0; v < nv; ++v) {
         const glm::dvec3 s = camera.project(glm::dvec3(currentFace.V(v, 0), currentFace.V(v, 1), currentFace.V(v, 2)));
         templateScreen[static_cast<std::size_t>(v)] = Eigen::Vector2d(s.x, s.y);
+        templateDepth[static_cast<std::size_t>(v)] = axis.dot(currentFace.V.row(v).transpose());
     }
     const double candidatesMs = clock.milliseconds();
     if (withCandidates == 0) {
@@ -338,7 +341,8 @@ StrokeReading StrokeReader::read(
         return reading;
     }
 
-    const MappingProblem problem { camera, projected.screen, projected.world, cloud, perPoint, templateScreen, impl_->rings, tau, params };
+    const MappingProblem problem { camera, projected.screen, projected.world, cloud, perPoint, templateScreen, templateDepth, impl_->rings,
+        tau, params };
     Mapping mapping;
     switch (kind) {
     case MapperKind::Nearest:
@@ -354,7 +358,6 @@ StrokeReading StrokeReader::read(
     }
     reading.chosen = mapping.chosen;
     reading.observations = std::move(mapping.observations);
-    const Eigen::Vector3d axis = viewAxis(camera);
     for (VertexObservation& o : reading.observations) {
         o.viewPlaneOnly = params.viewPlaneOnly;
         if (params.acrossStrokeOnly)

@@ -142,6 +142,22 @@ struct MapperParams {
     bool useConnectivity = true; ///< gamma_1 (4.48) on; off for the thesis' comparison of 4.9
     bool useStroke = true;       ///< gamma_2 (4.50)
     bool useSkeleton = true;     ///< gamma_3 (4.52)
+    /// Between two labelled-line candidates, the depth in 4.49's c' is their change in depth
+    /// beyond the current face's own between the same two vertices, not their change alone.
+    /// The thesis wants "equal displacement with minimum change in depth", which holds for lines
+    /// facing the camera; a line that recedes in depth (the eye's slit or the eyebrow seen from
+    /// the side) moves far in depth between stroke points a few pixels apart, and the thesis'
+    /// term kept the HMM on a few of its vertices (tests/sketch/mapper.cpp: 4-5 vertices, 0.4 of
+    /// the slit covered; now all of it). Labelled lines only: applied to every candidate, the
+    /// ICT import's front view lost 0.043. A silhouette's vertices differ from face to face,
+    /// and there the charge on depth probably keeps a path from jumping between a cheek's and
+    /// an ear's silhouette (kept to labelled lines, that view gains 0.009 instead). HMM, 1 px,
+    /// front / profile / 34 / all, the thesis' term -> this: 48 fitting faces of synthetic
+    /// high v18 0.617 / 0.447 / 0.495 / 0.297 -> 0.625 / 0.430 / 0.489 / 0.296; ICT import
+    /// 0.629 / 0.462 / 0.459 / 0.364 -> 0.620 / 0.465 / 0.436 / 0.363; v18's 20 test faces
+    /// 0.563 / 0.426 / 0.397 / 0.296 -> 0.562 / 0.409 / 0.399 / 0.301 (docs/sketching.md).
+    /// false in thesis().
+    bool strokeDepthFromFace = true;
 
     // --- heuristic (4.6.1) ---
     double lambda = 1.0; ///< weight of the endpoint term of eq. 4.29 (in tau units)
@@ -159,8 +175,8 @@ struct MapperParams {
 
     /// The thesis' values: the defaults, but observations pinning the stroke point in 3D
     /// (4.6.2: the candidate adapted to the stroke, with its depth) instead of across the stroke
-    /// in the view plane, sigma_d = 2 tau (4.8.5.2) and the 48 candidates per point used before
-    /// 2 December.
+    /// in the view plane, sigma_d = 2 tau (4.8.5.2), the 48 candidates per point used before
+    /// 2 December and 4.49's depth as the candidates' own.
     static MapperParams thesis()
     {
         MapperParams p;
@@ -168,6 +184,7 @@ struct MapperParams {
         p.maxCandidatesPerPoint = 48;
         p.viewPlaneOnly = false;
         p.acrossStrokeOnly = false;
+        p.strokeDepthFromFace = false;
         return p;
     }
     /// Throws Error naming the first field that is not positive/finite where it must be.

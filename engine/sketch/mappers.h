@@ -26,6 +26,8 @@ struct MappingProblem {
     const std::vector<std::vector<int>>& perPoint;
     /// f(g(v)) of eqs. 4.30-4.37: every vertex of the current face (the template) on screen, #V.
     const std::vector<Eigen::Vector2d>& templateScreen;
+    /// Every vertex of the template along the view axis (viewAxis()), mm, #V.
+    const std::vector<double>& templateDepth;
     const RingDistances& rings; ///< k-ring hop counts of the topology (4.8.4)
     double tau = 1;             ///< pixels (4.8.5.2)
     const MapperParams& params;

@@ -122,6 +122,11 @@ TEST_CASE("mapper: parameters are set by name, and the thesis' set keeps the the
     CHECK(!thesis.viewPlaneOnly);
     CHECK(!thesis.acrossStrokeOnly);
     CHECK(thesis.maxCandidatesPerPoint == 48);
+    // 4.49's depth as the thesis has it: the candidates' own, not beyond the face's.
+    CHECK(MapperParams().strokeDepthFromFace);
+    CHECK(!thesis.strokeDepthFromFace);
+    setMapperParam(p, "strokeDepthFromFace=0");
+    CHECK(!p.strokeDepthFromFace);
 }
 
 TEST_CASE("mapper: the direction across a stroke is perpendicular to it in the view plane")
@@ -466,5 +471,40 @@ TEST_CASE("mapper: options: the open border's silhouette dropped, view-plane-onl
     const auto [nearShare, covered] = overlap(ro, lip, rings, 0);
     CHECK(nearShare >= 0.9);
     CHECK(covered >= 0.8);
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("mapper: the HMM follows a line that recedes in depth: the stroke term charges only the depth the face does not turn")
+{
+    // Seen from the side, the eye's slit and the eyebrow run mostly along the view axis: a
+    // candidate path along them moves far in depth between stroke points a few pixels apart.
+    // The thesis' stroke term (4.49) charges that depth as if the path left the stroke, so the
+    // HMM kept a few vertices of the line and left the rest of the stroke on them (4 or 5
+    // vertices, under half the line covered, on this fixture). Measured against the depth the
+    // current face's own vertices turn through, a path along the face's line costs nothing.
+    const test::SketchWorld& w = test::sketchWorld();
+    StrokeReader reader(test::device(), w.model, w.candidateFaces, w.flags);
+    const RingDistances rings(w.model.triangles, w.model.vertexCount(), 4);
+    const std::vector<std::pair<const char*, double>> lines { { "eye_socket_l", 90 }, { "eye_socket_r", -90 }, { "eyebrow_l", 90 },
+        { "eyebrow_r", -90 } }; // each from its own side
+    for (const auto& [name, azimuth] : lines) {
+        const std::vector<int>& path = w.contours.at(name);
+        const Stroke stroke = traceOf(w.mean, path, { azimuth, 0 });
+        MapperParams thesisTerm;
+        thesisTerm.strokeDepthFromFace = false;
+        const StrokeReading r = reader.read(stroke, w.mean, MapperKind::Hmm),
+                            old = reader.read(stroke, w.mean, MapperKind::Hmm, thesisTerm);
+        checkWellFormed(r, w.model.vertexCount());
+        const auto [nearShare, covered] = overlap(r, path, rings, 1);
+        const double oldCovered = overlap(old, path, rings, 1).second;
+        std::cout << name << " from azimuth " << azimuth << ": " << r.observations.size() << " vertices, " << nearShare
+                  << " within one ring of the line, " << covered << " of it covered (the thesis' term: " << old.observations.size()
+                  << " vertices, " << oldCovered << " covered)\n";
+        INFO(name);
+        CHECK(nearShare >= 0.75);
+        CHECK(covered >= 0.8);
+        if (std::string(name).rfind("eye_socket", 0) == 0)
+            CHECK(oldCovered <= 0.5); // the case the change is for: the thesis' term fails it
+    }
     REQUIRE_NO_VALIDATION_MESSAGES();
 }

@@ -144,9 +144,10 @@ TEST_CASE("refine: the passes keep to the lines of the first reading")
     // rings and not anchored. Anchored, a pass may read a vertex that the first reading did not
     // only where the face it reads has its own silhouette (the lines ReadAnchor leaves free);
     // not anchored, some passes read other lines away from the first reading's, so the check
-    // is not vacuous (on this fixture, v18's faces: 1,240 pass vertices anchored, 482 of them off
-    // the first reading, all on silhouettes; not anchored 562 off it, 142 of those on no
-    // silhouette; run with -s to print them; v17's: 1,252 / 486 / 567 / 141). Until v16 of the
+    // is not vacuous (on this fixture, v18's faces with the stroke term's depth from the face:
+    // 1,257 pass vertices anchored, 397 of them off the first reading, all on silhouettes; not
+    // anchored 468 off it, 133 of those on no silhouette; run with -s to print them; with the
+    // thesis' term 1,240 / 482 / 562 / 142, v17's 1,252 / 486 / 567 / 141). Until v16 of the
     // built-in faces this compared the shares off the first reading with and without the anchor
     // (at most 0.8 times); on v16's fixture they are 0.41 and 0.43, on v17's and v18's 0.39 and
     // 0.43, since most such vertices lie on silhouettes either way.
