@@ -479,9 +479,11 @@ TEST_CASE("mapper: the HMM follows a line that recedes in depth: the stroke term
     // Seen from the side, the eye's slit and the eyebrow run mostly along the view axis: a
     // candidate path along them moves far in depth between stroke points a few pixels apart.
     // The thesis' stroke term (4.49) charges that depth as if the path left the stroke, so the
-    // HMM kept a few vertices of the line and left the rest of the stroke on them (4 or 5
-    // vertices, under half the line covered, on this fixture). Measured against the depth the
-    // current face's own vertices turn through, a path along the face's line costs nothing.
+    // HMM kept a few vertices of the line and left the rest of the stroke on them (on this
+    // fixture the slits: 4 or 5 vertices, 0.4 of the line covered; the eyebrows 5-6 vertices,
+    // 0.71-0.86 covered, so only the slits check the old term's failure). Measured against the
+    // depth the current face's own vertices turn through, a path along the face's line costs
+    // nothing.
     const test::SketchWorld& w = test::sketchWorld();
     StrokeReader reader(test::device(), w.model, w.candidateFaces, w.flags);
     const RingDistances rings(w.model.triangles, w.model.vertexCount(), 4);
