@@ -13,6 +13,7 @@
 #include "render/renderer.h"
 #include "stats/model_file.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -23,7 +24,7 @@ namespace facesketch::app {
 namespace {
 
 struct EvalStrokesCommand {
-    std::string model, dataset, json, output, views = "front,profile,34", mappers = "nearest,heuristic,hmm,simple";
+    std::string model, dataset, json, perStroke, output, views = "front,profile,34", mappers = "nearest,heuristic,hmm,simple";
     double errorScale = 10.0;
     sketch::SimulateOptions style; ///< how the simulated hand draws (addStrokeStyleOptions)
     int size = 1024, renders = 2, maxFaces = 0, similarFaces = sketch::MapperParams {}.similarFaces, rereads = -1;
@@ -85,6 +86,46 @@ void printRecords(const std::vector<evaluation::StrokeEvalRecord>& records)
     }
 }
 
+// Which features each mapper misreads (--per-stroke): the diagnosis behind docs/sketching.md's
+// per-feature figures.
+void printFeatureReadings(const std::vector<evaluation::FeatureReadings>& rows)
+{
+    std::cout << "# per feature: strokes drawn, read, misread (median across-stroke error over " << evaluation::kMisreadMm
+              << " mm), mean median across-stroke error\n";
+    std::cout << std::left << std::setw(9) << "view" << std::setw(22) << "feature" << std::setw(11) << "mapper" << std::right
+              << std::setw(9) << "strokes" << std::setw(7) << "read" << std::setw(9) << "misread" << std::setw(11) << "across mm"
+              << "  misread as\n";
+    for (const auto& r : rows) {
+        std::cout << std::left << std::setw(9) << r.view << std::setw(22) << r.feature << std::setw(11) << r.mapper << std::right
+                  << std::setw(9) << r.strokes << std::setw(7) << r.read << std::setw(9) << r.misread << std::fixed << std::setprecision(2)
+                  << std::setw(11) << r.acrossMm << " ";
+        // The lines the misread strokes were read as, most often first.
+        std::vector<std::pair<int, std::string>> as;
+        for (const auto& [name, count] : r.misreadAs)
+            as.emplace_back(-count, name);
+        std::sort(as.begin(), as.end());
+        for (const auto& [count, name] : as)
+            std::cout << " " << name << " " << -count;
+        std::cout << "\n";
+    }
+}
+
+void writePerStroke(const EvalStrokesCommand& c, const std::vector<evaluation::StrokeEvalStroke>& strokes)
+{
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& s : strokes) {
+        list.push_back({ { "face", s.face }, { "view", s.view }, { "mapper", s.mapper }, { "feature", s.feature }, { "read_as", s.readAs },
+            { "index", s.index }, { "points", s.points }, { "outcome", evaluation::strokeOutcomeName(s.outcome) },
+            { "observations", s.observations }, { "plane_mm", s.planeMm }, { "depth_mm", s.depthMm }, { "misread", s.misread },
+            { "read_ms", s.readMs } });
+        list.back()["across_mm"] = s.acrossMm ? nlohmann::json(*s.acrossMm) : nlohmann::json(nullptr);
+    }
+    const nlohmann::json doc { { "model", c.model }, { "dataset", c.dataset }, { "faces", c.faces }, { "noise_px", c.style.noisePx },
+        { "extreme", c.style.extreme }, { "seed", c.seed }, { "misread_mm", evaluation::kMisreadMm }, { "strokes", list } };
+    writeFileAtomically(c.perStroke, [&](std::ostream& out) { out << doc.dump(1) << "\n"; });
+    std::cout << "wrote " << strokes.size() << " stroke readings to " << c.perStroke << "\n";
+}
+
 void runEvalStrokes(const EvalStrokesCommand& c)
 {
     Stopwatch clock;
@@ -143,6 +184,7 @@ void runEvalStrokes(const EvalStrokesCommand& c)
     }
     o.oracle = evaluation::parseStrokeOracle(c.oracle);
     o.keepFaces = c.output.empty() ? 0 : c.renders;
+    o.keepStrokes = !c.perStroke.empty();
     if (!c.quiet)
         o.progress = [](const std::string& line) { std::cout << "# " << line << std::endl; };
 
@@ -155,6 +197,10 @@ void runEvalStrokes(const EvalStrokesCommand& c)
     printRecords(result.records);
     for (const std::string& note : result.notes)
         std::cout << "# refused: " << note << "\n";
+    if (o.keepStrokes) {
+        printFeatureReadings(evaluation::readingsByFeature(result.strokes));
+        writePerStroke(c, result.strokes);
+    }
 
     if (!c.json.empty()) {
         nlohmann::json records = nlohmann::json::array();
@@ -279,6 +325,9 @@ void addEvalStrokesCommand(CLI::App& eval)
            "or instead every vertex the stroke traces, across its true contour (true-curve) or at its true image (true-image)")
         ->capture_default_str();
     cmd->add_option("--json", c->json, "Write the records to this JSON file");
+    cmd->add_option("--per-stroke", c->perStroke,
+        "Write every stroke's reading to this JSON file ({\"strokes\": [{\"face\", \"view\", \"mapper\", \"feature\", \"outcome\", "
+        "\"across_mm\", \"misread\", ...}]}) and print the strokes read and misread per feature");
     cmd->add_option("-o,--output", c->output, "Folder for colour-coded error renders (blue to red)");
     cmd->add_option("--renders", c->renders, "Test faces to render")->capture_default_str();
     cmd->add_option("--error-scale", c->errorScale, "Error in mm drawn red")->capture_default_str();

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <tuple>
 
 namespace facesketch::evaluation {
 
@@ -38,6 +39,7 @@ struct ReadingErrors {
     double planeMm = 0, depthMm = 0, within1 = 0, within3 = 0, acrossMm = 0;
     long observations = 0, across = 0;
     bool hasAcross = false, misread = false;
+    double medianAcrossMm = 0; ///< when hasAcross
 };
 
 ReadingErrors readingErrors(const sketch::StrokeReading& reading, const Mesh& traced)
@@ -64,9 +66,32 @@ ReadingErrors readingErrors(const sketch::StrokeReading& reading, const Mesh& tr
         const auto middle = acrossErrors.begin() + static_cast<std::ptrdiff_t>(acrossErrors.size() / 2);
         std::nth_element(acrossErrors.begin(), middle, acrossErrors.end());
         r.hasAcross = true;
+        r.medianAcrossMm = *middle;
         r.misread = *middle > kMisreadMm;
     }
     return r;
+}
+
+// The labelled contour most of a reading's vertices lie on (each vertex counted once per
+// contour it lies on), or "unlabelled" when more vertices lie on none than on any one contour.
+std::string dominantContour(const sketch::StrokeReading& reading, const std::vector<std::vector<std::string>>& contoursOf)
+{
+    std::map<std::string, int> votes;
+    for (const sketch::VertexObservation& o : reading.observations) {
+        const std::vector<std::string>& names = contoursOf[o.vertex];
+        if (names.empty())
+            ++votes["unlabelled"];
+        for (const std::string& name : names)
+            ++votes[name];
+    }
+    std::string best;
+    int most = 0;
+    for (const auto& [name, count] : votes)
+        if (count > most) {
+            best = name;
+            most = count;
+        }
+    return best;
 }
 
 struct Sums {
@@ -121,6 +146,55 @@ std::vector<sketch::VertexObservation> tracedContour(
 
 } // namespace
 
+const char* strokeOutcomeName(StrokeEvalStroke::Outcome outcome)
+{
+    switch (outcome) {
+    case StrokeEvalStroke::Outcome::Read:
+        return "read";
+    case StrokeEvalStroke::Outcome::Unread:
+        return "unread";
+    case StrokeEvalStroke::Outcome::Failed:
+        return "failed";
+    }
+    return "unknown";
+}
+
+std::vector<FeatureReadings> readingsByFeature(const std::vector<StrokeEvalStroke>& strokes)
+{
+    // First-appearance ranks, so that rows follow the evaluation's own order.
+    std::map<std::string, int> views, features, mappers;
+    const auto rank = [](std::map<std::string, int>& order, const std::string& name) {
+        return order.try_emplace(name, static_cast<int>(order.size())).first->second;
+    };
+    std::map<std::tuple<int, int, int>, FeatureReadings> rows;
+    std::map<std::tuple<int, int, int>, int> acrossCounts;
+    for (const StrokeEvalStroke& s : strokes) {
+        const auto key = std::make_tuple(rank(views, s.view), rank(features, s.feature), rank(mappers, s.mapper));
+        FeatureReadings& row = rows[key];
+        row.view = s.view;
+        row.feature = s.feature;
+        row.mapper = s.mapper;
+        ++row.strokes;
+        if (s.outcome != StrokeEvalStroke::Outcome::Read)
+            continue;
+        ++row.read;
+        row.misread += s.misread;
+        if (s.misread)
+            ++row.misreadAs[s.readAs];
+        if (s.acrossMm) {
+            row.acrossMm += *s.acrossMm;
+            ++acrossCounts[key];
+        }
+    }
+    std::vector<FeatureReadings> out;
+    for (auto& [key, row] : rows) {
+        if (const int n = acrossCounts[key]; n > 0)
+            row.acrossMm /= n;
+        out.push_back(row);
+    }
+    return out;
+}
+
 const char* strokeOracleName(StrokeOracle oracle)
 {
     switch (oracle) {
@@ -163,6 +237,14 @@ StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data
                 " vertices, the model ", nv, ")");
 
     const Mesh mean = meshOf(model.meanFace, model.triangles);
+    std::vector<std::vector<std::string>> contoursOf(static_cast<size_t>(nv));
+    if (options.keepStrokes)
+        for (const auto& [name, path] : data.contours) {
+            std::set<int> once(path.begin(), path.end()); // a closed loop repeats its first vertex
+            for (int v : once)
+                if (v >= 0 && v < nv)
+                    contoursOf[static_cast<size_t>(v)].push_back(name);
+        }
     sketch::StrokeReader reader(device, model, data.candidateFaces, data.flags);
 
     // Per view name (then "all"), per mapper.
@@ -200,13 +282,41 @@ StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data
                 Sums& s = sums[{ view, static_cast<int>(m) }];
                 sketch::ApplyOptions apply;
                 apply.correlation = options.correlation;
-                for (const sketch::SimulatedStroke* stroke : sequence) {
+                for (size_t k = 0; k < sequence.size(); ++k) {
+                    const sketch::SimulatedStroke* stroke = sequence[k];
                     ++s.strokes;
+                    StrokeEvalStroke record;
+                    if (options.keepStrokes) {
+                        record.face = data.testNames[f];
+                        record.view = view;
+                        record.mapper = sketch::mapperName(kind);
+                        record.feature = stroke->feature;
+                        record.index = static_cast<int>(k);
+                        record.points = static_cast<int>(stroke->stroke.points.size());
+                    }
+                    const auto keep = [&](StrokeEvalStroke::Outcome outcome, const ReadingErrors* errors, double readMs) {
+                        if (!options.keepStrokes)
+                            return;
+                        record.outcome = outcome;
+                        record.readMs = readMs;
+                        if (errors && errors->observations > 0) {
+                            record.observations = static_cast<int>(errors->observations);
+                            record.planeMm = errors->planeMm / static_cast<double>(errors->observations);
+                            record.depthMm = errors->depthMm / static_cast<double>(errors->observations);
+                        }
+                        if (errors && errors->hasAcross) {
+                            record.acrossMm = errors->medianAcrossMm;
+                            record.misread = errors->misread;
+                        }
+                        result.strokes.push_back(std::move(record));
+                    };
                     // What the last reading applied measured against the truth (each pass's
                     // reading replaces the previous one's, so the last one is counted).
                     ReadingErrors last;
                     const sketch::ReadingHook hook = [&](sketch::StrokeReading& reading) {
                         last = readingErrors(reading, traced);
+                        if (options.keepStrokes)
+                            record.readAs = dominantContour(reading, contoursOf);
                         if (options.oracle == StrokeOracle::TrueCurve || options.oracle == StrokeOracle::TrueImage)
                             reading.observations
                                 = tracedContour(*stroke, traced, reading.viewPlane, options.oracle == StrokeOracle::TrueCurve);
@@ -230,15 +340,18 @@ StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data
                         if (s.failed++ == 0)
                             result.notes.push_back(
                                 cat(view, " ", sketch::mapperName(kind), " ", data.testNames[f], " ", stroke->feature, ": ", e.what()));
+                        keep(StrokeEvalStroke::Outcome::Failed, nullptr, 0);
                         continue;
                     }
                     s.readMs += done.readMs;
                     if (done.reading.observations.empty()) {
                         ++s.unread;
+                        keep(StrokeEvalStroke::Outcome::Unread, nullptr, done.readMs);
                         continue;
                     }
                     s.applyMs += done.applyMs;
                     s.add(last);
+                    keep(StrokeEvalStroke::Outcome::Read, &last, done.readMs);
                 }
                 const Eigen::VectorXd e = vertexErrors(tracking.face(), traced);
                 s.mean += e.mean();

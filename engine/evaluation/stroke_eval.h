@@ -75,6 +75,9 @@ struct StrokeEvalOptions {
     StrokeOracle oracle = StrokeOracle::None;
     /// Keep per-vertex errors and reconstructions of the first this many test faces (renders).
     int keepFaces = 0;
+    /// Keep one StrokeEvalStroke per stroke drawn (StrokeEvalResult::strokes): which features a
+    /// mapper misreads, repeatably.
+    bool keepStrokes = false;
     /// Called after each (face, view) with a line of progress; may be empty.
     std::function<void(const std::string&)> progress;
 };
@@ -141,10 +144,45 @@ struct StrokeEvalFace {
     Mesh reconstruction;
 };
 
+/// One stroke's reading against the face it traces (StrokeEvalOptions::keepStrokes), measured
+/// as StrokeEvalRecord measures all of a view's: of the last reading applied, before any oracle.
+struct StrokeEvalStroke {
+    enum class Outcome { Read, Unread, Failed };
+    std::string face, view, mapper;
+    std::string feature; ///< the traced contour's name, or "silhouette"
+    /// The labelled contour most of its observed vertices lie on (StrokeEvalData::contours), or
+    /// "unlabelled" when most lie on none (silhouettes, suggestive contours); empty unread.
+    std::string readAs;
+    int index = 0;  ///< its place among the view's strokes (view "all": every view's in turn)
+    int points = 0; ///< points drawn
+    Outcome outcome = Outcome::Read;
+    int observations = 0;
+    double planeMm = 0, depthMm = 0; ///< means over its observations (0 without any)
+    /// The median across-stroke error of its observations pinned across the stroke (mm), and
+    /// whether it exceeds kMisreadMm; nullopt without such observations.
+    std::optional<double> acrossMm;
+    bool misread = false;
+    double readMs = 0;
+};
+
+const char* strokeOutcomeName(StrokeEvalStroke::Outcome outcome);
+
+/// Per (view, feature, mapper), of kept strokes: how many were drawn, read (pinned something)
+/// and misread (StrokeEvalStroke::misread), and the mean of the read strokes' median
+/// across-stroke errors. Rows in the order each view, feature and mapper first appears.
+struct FeatureReadings {
+    std::string view, feature, mapper;
+    int strokes = 0, read = 0, misread = 0;
+    double acrossMm = 0;                  ///< mean over the read strokes with an across-stroke error
+    std::map<std::string, int> misreadAs; ///< the misread strokes by StrokeEvalStroke::readAs
+};
+std::vector<FeatureReadings> readingsByFeature(const std::vector<StrokeEvalStroke>& strokes);
+
 struct StrokeEvalResult {
     std::vector<StrokeEvalRecord> records; ///< per view (then "all"), per mapper in the order given
     std::vector<StrokeEvalFace> kept;
-    std::vector<std::string> notes; ///< e.g. the first message of each failed stroke
+    std::vector<StrokeEvalStroke> strokes; ///< every stroke, when StrokeEvalOptions::keepStrokes
+    std::vector<std::string> notes;        ///< e.g. the first message of each failed stroke
 };
 
 /// Runs the measurement (GPU candidate clouds through sketch::StrokeReader). Throws Error for

@@ -6,6 +6,10 @@
 #include "evaluation/contour_eval.h"
 #include "model/trained.h"
 
+#include <cmath>
+#include <optional>
+#include <set>
+
 using namespace facesketch;
 
 namespace {
@@ -111,6 +115,106 @@ TEST_CASE("stroke_eval: every other mapper is paired with nearest on the same fa
     o.keepFaces = 0;
     REQUIRE(!evaluation::evaluateStrokes(test::device(), d, o).records.at(0).versusNearest);
     REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("stroke_eval: every stroke's reading is kept on request, and adds up to the records")
+{
+    const evaluation::StrokeEvalData d = smallData();
+    evaluation::StrokeEvalOptions o;
+    o.views = { { "front", { 0, 0 } }, { "profile", { 90, 0 } } };
+    o.mappers = { sketch::MapperKind::Nearest, sketch::MapperKind::Hmm };
+    REQUIRE(evaluation::evaluateStrokes(test::device(), d, o).strokes.empty()); // off by default
+    o.keepStrokes = true;
+    const evaluation::StrokeEvalResult r = evaluation::evaluateStrokes(test::device(), d, o);
+    REQUIRE(r.records.size() == 6);
+    for (const auto& rec : r.records) {
+        int drawn = 0, read = 0, withAcross = 0, misread = 0;
+        std::set<std::string> faces;
+        for (const auto& s : r.strokes) {
+            if (s.view != rec.view || s.mapper != rec.mapper)
+                continue;
+            ++drawn;
+            faces.insert(s.face);
+            REQUIRE(!s.feature.empty());
+            REQUIRE(s.points > 0);
+            if (s.outcome != evaluation::StrokeEvalStroke::Outcome::Read) {
+                REQUIRE(s.observations == 0);
+                continue;
+            }
+            ++read;
+            REQUIRE(s.observations > 0);
+            REQUIRE(std::isfinite(s.planeMm));
+            REQUIRE((s.readAs == "unlabelled" || d.contours.count(s.readAs) == 1));
+            if (s.acrossMm) {
+                ++withAcross;
+                misread += s.misread;
+                REQUIRE(s.misread == (*s.acrossMm > evaluation::kMisreadMm));
+            }
+        }
+        INFO(rec.view << " " << rec.mapper << ": " << drawn << " strokes kept, " << read << " read, " << misread << " misread");
+        REQUIRE(drawn == rec.strokes);
+        REQUIRE(read == rec.strokes - rec.unread - rec.failed);
+        REQUIRE(faces.size() == 3);
+        REQUIRE(withAcross > 0);
+        REQUIRE(static_cast<double>(misread) / withAcross == Approx(rec.misread).margin(1e-12));
+    }
+    // The strokes of view "all" are the single views' in turn, each in its own order.
+    std::vector<std::string> single, all;
+    for (const auto& s : r.strokes)
+        if (s.face == "test0" && s.mapper == "hmm")
+            (s.view == "all" ? all : single).push_back(s.feature);
+    REQUIRE(all == single);
+
+    // Per feature: every kept stroke counted once, in the evaluation's order.
+    const std::vector<evaluation::FeatureReadings> rows = evaluation::readingsByFeature(r.strokes);
+    int total = 0;
+    for (const auto& row : rows) {
+        total += row.strokes;
+        REQUIRE(row.read <= row.strokes);
+        REQUIRE(row.misread <= row.read);
+    }
+    REQUIRE(total == static_cast<int>(r.strokes.size()));
+    REQUIRE(rows.front().view == "front");
+    REQUIRE(rows.front().mapper == "nearest");
+    REQUIRE(rows.back().view == "all");
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("stroke_eval: readings by feature count strokes, reads and misreads, and average only the read strokes' errors")
+{
+    using Outcome = evaluation::StrokeEvalStroke::Outcome;
+    const auto stroke = [](std::string view, std::string feature, Outcome outcome, std::optional<double> across) {
+        evaluation::StrokeEvalStroke s;
+        s.view = std::move(view);
+        s.feature = std::move(feature);
+        s.mapper = "hmm";
+        s.outcome = outcome;
+        s.acrossMm = across;
+        s.misread = across && *across > evaluation::kMisreadMm;
+        s.readAs = outcome == Outcome::Read ? "brow" : "";
+        return s;
+    };
+    const std::vector<evaluation::StrokeEvalStroke> strokes
+        = { stroke("profile", "eye_slit", Outcome::Read, 2.0), stroke("front", "lip_upper", Outcome::Read, 0.5),
+              stroke("profile", "eye_slit", Outcome::Read, 1.0), stroke("profile", "eye_slit", Outcome::Unread, std::nullopt),
+              stroke("profile", "eye_slit", Outcome::Read, std::nullopt), stroke("profile", "silhouette", Outcome::Failed, std::nullopt) };
+    const std::vector<evaluation::FeatureReadings> rows = evaluation::readingsByFeature(strokes);
+    REQUIRE(rows.size() == 3);
+    // Views, then features, in the order they first appear.
+    REQUIRE(rows[0].view == "profile");
+    REQUIRE(rows[0].feature == "eye_slit");
+    REQUIRE(rows[0].strokes == 4);
+    REQUIRE(rows[0].read == 3);
+    REQUIRE(rows[0].misread == 1);
+    REQUIRE(rows[0].acrossMm == Approx(1.5)); // of the two read strokes with an across error
+    REQUIRE(rows[0].misreadAs == std::map<std::string, int> { { "brow", 1 } });
+    REQUIRE(rows[1].feature == "silhouette");
+    REQUIRE(rows[1].read == 0);
+    REQUIRE(rows[1].acrossMm == 0);
+    REQUIRE(rows[2].view == "front");
+    REQUIRE(rows[2].feature == "lip_upper");
+    REQUIRE(rows[2].acrossMm == Approx(0.5));
+    REQUIRE(evaluation::readingsByFeature({}).empty());
 }
 
 TEST_CASE("stroke_eval: the diagnostics: mapped vertices at their true positions rebuild better, and the errors of the mapping")
