@@ -318,7 +318,8 @@ void addEvalStrokesCommand(CLI::App& eval)
         ->excludes(refine)
         ->excludes(refineMapper);
     cmd->add_option("--mapper-param", c->mapperParams,
-        "Set one mapper parameter, NAME=VALUE (repeatable; names as in sketch/mapper.h MapperParams, e.g. sigmaDTau=2, useSkeleton=0)");
+        "Set one mapper parameter, NAME=VALUE (repeatable; names as in sketch/mapper_params.h MapperParams, e.g. sigmaDTau=2, "
+        "useSkeleton=0)");
     cmd->add_flag("--own-contours", c->ownContours, "The current face's own contours join the candidate cloud");
     cmd->add_option("--oracle", c->oracle,
            "Diagnosis: give the tracking model the mapped vertices at the true depth (true-depth) or true position (true-position), "

@@ -29,11 +29,21 @@ namespace {
 struct SketchCommand {
     std::string model, dataset, session, output, render, mapper;
     int similar = 3;
-    int refine = -1; ///< -1: as each stroke recorded (else the default)
+    int refine = -1;                       ///< -1: as each stroke recorded (else the default)
+    std::vector<std::string> mapperParams; ///< NAME=VALUE, over what each stroke recorded
 };
 
 void runSketch(const SketchCommand& c)
 {
+    // --mapper-param, checked before anything is loaded.
+    std::map<std::string, double> overrides;
+    for (const std::string& assignment : c.mapperParams) {
+        sketch::MapperParams one; // parses, and names a bad assignment
+        sketch::setMapperParam(one, assignment);
+        const std::string name = assignment.substr(0, assignment.find('='));
+        overrides[name] = sketch::mapperParamValues(one).at(name);
+    }
+    (void)sketch::mapperParamsFrom(overrides); // and their ranges
     const sketch::Session session = sketch::loadSession(c.session);
     (void)sketch::sessionInputs(session, c.session); // the session's model and dataset must exist
     // -1: each stroke's own mapper (GCC warns about reading an optional here).
@@ -49,6 +59,7 @@ void runSketch(const SketchCommand& c)
         refine.passes = c.refine;
         replayer.setRefine(refine);
     }
+    replayer.setMapperParamOverrides(overrides);
     std::cout << "# " << session.actions.size() << " strokes, " << m.vertexCount() << " vertices, cloud of " << d.candidateFaces.size()
               << " faces\n";
     std::cout << std::fixed << std::setprecision(1);
@@ -159,6 +170,10 @@ void addSketchCommand(CLI::App& root)
            "the first reading alone). Default: as each stroke recorded, else "
                + std::to_string(sketch::RefineOptions {}.passes))
         ->check(CLI::Range(0, 16));
+    cmd->add_option("--mapper-param", c->mapperParams,
+        "Read every stroke with this mapper parameter, NAME=VALUE, over what the strokes recorded (repeatable; names as in "
+        "sketch/mapper_params.h MapperParams, e.g. sigmaDTau=2; by default each stroke is read with the parameters it recorded, else the "
+        "defaults)");
     cmd->add_option("--similar", c->similar, "Print the k most similar training faces")->capture_default_str()->check(CLI::Range(0, 1000));
     cmd->callback([c] { runSketch(*c); });
 }

@@ -81,6 +81,7 @@ void runSimulate(const SimulateCommand& c)
         a.reading.symmetry = c.symmetry;
         a.reading.refinePasses = sketch::RefineOptions {}.passes;
         a.reading.refineAnchorRings = sketch::RefineOptions {}.anchorRings;
+        a.reading.mapperParams = sketch::mapperParamValues(sketch::MapperParams {});
         session.actions.push_back(std::move(a));
         ++perFeature[s.feature];
         points += s.stroke.points.size();

@@ -48,10 +48,11 @@ sketch::ReplayOutcome Document::addStroke(sketch::StrokeAction action)
     sketch::ReplayOutcome out = replayer_.apply(action);
     if (out.kind != sketch::ReplayOutcome::Kind::Applied)
         return out;
-    // The session records the refinement the stroke was read with, so that it replays to this
+    // The session records the refinement and parameters the stroke was read with, so that it replays to this
     // face after a release changes the defaults.
     action.reading.refinePasses = out.refine.passes;
     action.reading.refineAnchorRings = out.refine.anchorRings;
+    action.reading.mapperParams = sketch::mapperParamValues(out.params);
     // The replayer forgot its undone strokes when it applied this one, so the document does too.
     dropRedo();
     strokes_.push_back({ std::move(action), out.reading });

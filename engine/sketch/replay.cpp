@@ -28,11 +28,20 @@ RefineOptions SessionReplayer::refineFor(const StrokeAction& action) const
     return r;
 }
 
+MapperParams SessionReplayer::paramsFor(const StrokeAction& action) const
+{
+    std::map<std::string, double> values = action.reading.mapperParams;
+    for (const auto& [name, value] : paramOverrides_)
+        values[name] = value;
+    return mapperParamsFrom(values);
+}
+
 ReplayOutcome SessionReplayer::apply(const StrokeAction& action, std::optional<MapperKind> mapperOverride)
 {
     ReplayOutcome out;
     out.mapper = mapperOverride ? *mapperOverride : parseMapper(action.reading.mapper);
     out.refine = refineFor(action);
+    out.params = paramsFor(action);
     if (action.reading.symmetry && !mirror_) {
         // Found once, from the mean face (the most symmetric), before anything is read so that a
         // face without a mirror map fails before the stroke changes anything.
@@ -44,7 +53,7 @@ ReplayOutcome SessionReplayer::apply(const StrokeAction& action, std::optional<M
     }
     Stopwatch clock;
     try {
-        out.reading = reader_.read(action.stroke, tracking_.faceMesh(), out.mapper);
+        out.reading = reader_.read(action.stroke, tracking_.faceMesh(), out.mapper, out.params);
     } catch (const Error& e) {
         out.kind = ReplayOutcome::Kind::Refused;
         out.error = e.what();
@@ -59,8 +68,7 @@ ReplayOutcome SessionReplayer::apply(const StrokeAction& action, std::optional<M
     ApplyOptions apply;
     apply.correlation = action.reading.correlation;
     apply.mirror = action.reading.symmetry ? mirror_.get() : nullptr;
-    ReadResult done
-        = applyAndRefine(reader_, tracking_, action.stroke, std::move(out.reading), out.mapper, MapperParams {}, apply, out.refine);
+    ReadResult done = applyAndRefine(reader_, tracking_, action.stroke, std::move(out.reading), out.mapper, out.params, apply, out.refine);
     out.reading = std::move(done.reading);
     out.refinePasses = done.passes;
     out.readMs += done.readMs;

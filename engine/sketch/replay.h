@@ -35,6 +35,7 @@ struct ReplayOutcome {
     StrokeReading reading;       ///< empty when refused; when applied, the one the face follows
     int refinePasses = 0;        ///< refinement passes applied (sketch/refine.h)
     RefineOptions refine;        ///< the refinement the stroke was read with (refineFor)
+    MapperParams params;         ///< the mapper's parameters it was read with (paramsFor)
     std::string error;           ///< when refused
     double readMs = 0;           ///< wall time of the readings (the first and the refinement passes)
     StrokeReader::Timing timing; ///< the reader's split of readMs
@@ -54,7 +55,8 @@ public:
     /// Reads `action` against the current face with `mapperOverride` if given, else the
     /// action's mapper, and applies it when it pins anything (forgetting any undone strokes).
     /// A stroke the reader refuses (facesketch::Error) is reported in the outcome and leaves
-    /// everything as it was. Throws Error for an unknown mapper name, a mirror map that cannot
+    /// everything as it was. Throws Error for an unknown mapper name or parameter
+    /// (paramsFor), a mirror map that cannot
     /// be found (the face unchanged) or an error of the tracking model (state unchanged).
     ReplayOutcome apply(const StrokeAction& action, std::optional<MapperKind> mapperOverride = std::nullopt);
 
@@ -80,6 +82,19 @@ public:
     /// The refinement `action` is read with: setRefine's if called, else what the stroke
     /// recorded, else RefineOptions{} (the reader's defaults).
     RefineOptions refineFor(const StrokeAction& action) const;
+    /// Mapper parameters set on every stroke applied from now on, over what the strokes
+    /// recorded (by MapperParams field name, as ReadingOptions::mapperParams): a study of a
+    /// session with other parameters. Throws Error naming an unknown parameter or a refused
+    /// value, keeping the previous overrides.
+    void setMapperParamOverrides(const std::map<std::string, double>& overrides)
+    {
+        (void)mapperParamsFrom(overrides);
+        paramOverrides_ = overrides;
+    }
+    /// The mapper's parameters `action` is read with: the defaults, with what the stroke
+    /// recorded set (ReadingOptions::mapperParams), then the overrides (mapperParamsFrom).
+    /// Throws Error naming a parameter this release does not know or a value it refuses.
+    MapperParams paramsFor(const StrokeAction& action) const;
 
 private:
     const stats::FaceModel& model_;
@@ -90,6 +105,7 @@ private:
     std::unique_ptr<MirrorMap> mirror_;
     RefineOptions refine_;
     bool refineForced_ = false;
+    std::map<std::string, double> paramOverrides_;
 };
 
 } // namespace facesketch::sketch

@@ -3,6 +3,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/limits.h"
+#include "sketch/mapper_params.h"
 
 #include <algorithm>
 #include <cmath>
@@ -178,7 +179,7 @@ Stroke parseStroke(const Node& n)
 
 ReadingOptions parseReading(const Node& n)
 {
-    n.object({ "mapper", "correlation", "symmetry", "refine_passes", "refine_anchor_rings" });
+    n.object({ "mapper", "correlation", "symmetry", "refine_passes", "refine_anchor_rings", "mapper_params" });
     ReadingOptions r;
     r.mapper = n["mapper"].text();
     const auto& names = sessionMapperNames();
@@ -191,6 +192,27 @@ ReadingOptions parseReading(const Node& n)
         r.refinePasses = n["refine_passes"].integer(0, 16);
     if (n.has("refine_anchor_rings"))
         r.refineAnchorRings = n["refine_anchor_rings"].integer(-1, 4);
+    if (n.has("mapper_params")) {
+        const Node params = n["mapper_params"];
+        if (!params.value.is_object())
+            params.bad(cat("expected an object, found ", params.value.type_name()));
+        MapperParams p;
+        for (const auto& item : params.value.items()) {
+            const Node field = params[item.key()];
+            const double value = field.number();
+            try {
+                setMapperParam(p, item.key(), value);
+            } catch (const Error& e) {
+                field.bad(e.what());
+            }
+            r.mapperParams[item.key()] = value;
+        }
+        try {
+            p.validate();
+        } catch (const Error& e) {
+            params.bad(e.what());
+        }
+    }
     return r;
 }
 
@@ -405,6 +427,8 @@ std::string sessionToJson(const Session& session)
             reading["refine_passes"] = *a.reading.refinePasses;
         if (a.reading.refineAnchorRings)
             reading["refine_anchor_rings"] = *a.reading.refineAnchorRings;
+        if (!a.reading.mapperParams.empty())
+            reading["mapper_params"] = a.reading.mapperParams;
         actions.push_back({ { "type", "stroke" }, { "stroke", strokeJson(a.stroke) }, { "reading", std::move(reading) } });
     }
     placePoseActions(session.actions.size());
@@ -449,7 +473,7 @@ bool operator==(const Stroke& a, const Stroke& b)
 bool operator==(const ReadingOptions& a, const ReadingOptions& b)
 {
     return a.mapper == b.mapper && a.correlation == b.correlation && a.symmetry == b.symmetry && a.refinePasses == b.refinePasses
-        && a.refineAnchorRings == b.refineAnchorRings;
+        && a.refineAnchorRings == b.refineAnchorRings && a.mapperParams == b.mapperParams;
 }
 
 bool operator==(const StrokeAction& a, const StrokeAction& b)

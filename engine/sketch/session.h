@@ -11,6 +11,7 @@
 #include "sketch/stroke.h"
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +38,11 @@ struct ReadingOptions {
     /// 5 December 2026: those strokes are read with the reader's defaults.
     std::optional<int> refinePasses;
     std::optional<int> refineAnchorRings;
+    /// The mapper's parameters the stroke was read with, by MapperParams field name
+    /// (sketch/mapper.h mapperParamValues; flags 0 or 1), for the same reason. Parameters not
+    /// named, and all of them in sessions written before they were recorded (5 December 2026),
+    /// take the replaying release's defaults.
+    std::map<std::string, double> mapperParams;
 };
 
 /// The mapper names a session accepts, in the order of MapperKind.

@@ -237,6 +237,11 @@ int main(int argc, char** argv)
         session.actions.push_back(b);
         writeBytes(root / "session" / "seed-two-strokes.json", sketch::sessionToJson(session));
 
+        // The first stroke with what a stroke records of its reading since 5 December 2026.
+        session.actions[0].reading.refinePasses = 2;
+        session.actions[0].reading.refineAnchorRings = 2;
+        session.actions[0].reading.mapperParams = { { "sigmaDTau", 0.3 }, { "useSkeleton", 1 }, { "maxCandidatesPerPoint", 96 } };
+
         // A version 3 session with every kind of action: the two shape strokes, pose strokes
         // (primary and alternative), keyframes, moving and deleting one, clearing the pose, and
         // the pose model, face and tension, so the fuzzer starts from every branch of the parser.

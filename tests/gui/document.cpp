@@ -97,11 +97,12 @@ TEST_CASE("document: undo and redo of strokes restore the face exactly, a new st
     REQUIRE_FALSE(doc.redo());
     REQUIRE(doc.strokes().size() == 2);
     REQUIRE(doc.session().actions.size() == 2);
-    // Each stroke records the refinement it was read with, so the session replays to this face
-    // after the defaults change.
+    // Each stroke records the refinement and the mapper's parameters it was read with, so the
+    // session replays to this face after the defaults change.
     for (const sketch::StrokeAction& a : doc.session().actions) {
         REQUIRE(a.reading.refinePasses == sketch::RefineOptions {}.passes);
         REQUIRE(a.reading.refineAnchorRings == sketch::RefineOptions {}.anchorRings);
+        REQUIRE(a.reading.mapperParams == sketch::mapperParamValues(sketch::MapperParams {}));
     }
 
     REQUIRE(doc.undo());
@@ -110,9 +111,10 @@ TEST_CASE("document: undo and redo of strokes restore the face exactly, a new st
     if (doc.addStroke(third).kind == sketch::ReplayOutcome::Kind::Applied) {
         REQUIRE_FALSE(doc.canRedo());
         REQUIRE(doc.strokes().size() == 2);
-        sketch::StrokeAction kept = third; // as given, with the refinement it was read with
+        sketch::StrokeAction kept = third; // as given, with the refinement and parameters it was read with
         kept.reading.refinePasses = sketch::RefineOptions {}.passes;
         kept.reading.refineAnchorRings = sketch::RefineOptions {}.anchorRings;
+        kept.reading.mapperParams = sketch::mapperParamValues(sketch::MapperParams {});
         REQUIRE(sketch::operator==(doc.strokes().back().action, kept));
         REQUIRE(doc.revision() != r1);
     }

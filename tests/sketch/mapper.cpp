@@ -84,6 +84,32 @@ TEST_CASE("mapper: mapper names round-trip and unknown names are refused")
     REQUIRE_THROWS_WITH(q.validate(), Catch::Contains("similarFaces = -1"));
 }
 
+TEST_CASE("mapper: every named parameter is listed with its value, and the list rebuilds the parameters")
+{
+    const MapperParams defaults;
+    const std::map<std::string, double> values = mapperParamValues(defaults);
+    REQUIRE(values.size() == 28);
+    CHECK(values.at("sigmaDTau") == defaults.sigmaDTau);
+    CHECK(values.at("maxCandidatesPerPoint") == defaults.maxCandidatesPerPoint);
+    CHECK(values.at("useSkeleton") == 1.0);
+    CHECK(values.at("ownContours") == 0.0);
+    // Each name sets the field it lists: change one at a time, and only that one moves.
+    for (const auto& [name, value] : values) {
+        const double other = name == "splineTension" ? 0.5 : value == 0 || value == 1 ? 1 - value : value + 1;
+        const MapperParams changed = mapperParamsFrom({ { name, other } });
+        std::map<std::string, double> expected = values;
+        expected[name] = other;
+        INFO(name);
+        CHECK(mapperParamValues(changed) == expected);
+    }
+    // The thesis' set survives the trip through names (a session's record of it).
+    const MapperParams thesis = MapperParams::thesis();
+    CHECK(mapperParamValues(mapperParamsFrom(mapperParamValues(thesis))) == mapperParamValues(thesis));
+    REQUIRE_THROWS_WITH(mapperParamsFrom({ { "sigmaQ", 1.0 } }), Catch::Contains("'sigmaQ' is unknown"));
+    REQUIRE_THROWS_WITH(mapperParamsFrom({ { "sigmaC", -1.0 } }), Catch::Contains("sigmaC = -1"));
+    REQUIRE(mapperParamsFrom({}).sigmaC == defaults.sigmaC);
+}
+
 TEST_CASE("mapper: parameters are set by name, and the thesis' set keeps the thesis' values")
 {
     MapperParams p;

@@ -101,6 +101,50 @@ TEST_CASE("replay: a stroke is refined as it recorded, unless the replayer is to
     REQUIRE(forced.refineFor(recorded).anchorRings == RefineOptions {}.anchorRings);
 }
 
+TEST_CASE("replay: a stroke is read with the mapper parameters it recorded, the defaults where it recorded none")
+{
+    const auto& w = test::sketchWorld();
+    const std::vector<Stroke> strokes = frontStrokes();
+    // Parameters far from the defaults, as a session written by an older release would hold.
+    MapperParams thesis = MapperParams::thesis();
+    thesis.similarFaces = 0;
+    StrokeAction recorded { strokes[0], {} };
+    recorded.reading.mapperParams = mapperParamValues(thesis);
+    REQUIRE(mapperParamsFrom(recorded.reading.mapperParams).sigmaDTau == thesis.sigmaDTau);
+    REQUIRE(mapperParamValues(mapperParamsFrom(recorded.reading.mapperParams)) == recorded.reading.mapperParams);
+    SessionReplayer replayer(test::device(), w.model, w.candidateFaces, w.flags, {}, "test model");
+    REQUIRE(replayer.paramsFor({ strokes[0], {} }).sigmaDTau == MapperParams {}.sigmaDTau);
+    const ReplayOutcome out = replayer.apply(recorded);
+    REQUIRE(out.kind == ReplayOutcome::Kind::Applied);
+    REQUIRE(mapperParamValues(out.params) == recorded.reading.mapperParams);
+    // The face is that of reading with the recorded parameters, and not that of the defaults.
+    StrokeReader reader(test::device(), w.model, w.candidateFaces, w.flags);
+    TrackingModel withRecorded(w.model), withDefaults(w.model);
+    (void)readAndApply(reader, withRecorded, recorded.stroke, MapperKind::Hmm, thesis, {}, RefineOptions {});
+    (void)readAndApply(reader, withDefaults, recorded.stroke, MapperKind::Hmm, {}, {}, RefineOptions {});
+    REQUIRE(replayer.tracking().face() == withRecorded.face());
+    REQUIRE(replayer.tracking().face() != withDefaults.face());
+
+    // A parameter this release does not know is refused by name, and nothing changes.
+    StrokeAction unknown { strokes[1], {} };
+    unknown.reading.mapperParams = { { "sigmaWobble", 1.0 } };
+    REQUIRE_THROWS_WITH(replayer.apply(unknown), Catch::Contains("sigmaWobble"));
+    REQUIRE(replayer.tracking().strokes() == 1);
+    REQUIRE(replayer.tracking().face() == withRecorded.face());
+
+    // Overrides win over what a stroke recorded, name by name; bad ones are refused and the
+    // previous ones kept.
+    SessionReplayer study(test::device(), w.model, w.candidateFaces, w.flags, {}, "test model");
+    study.setMapperParamOverrides({ { "sigmaDTau", 0.3 } });
+    const MapperParams both = study.paramsFor(recorded);
+    CHECK(both.sigmaDTau == 0.3);
+    CHECK(both.maxCandidatesPerPoint == thesis.maxCandidatesPerPoint);
+    REQUIRE_THROWS_WITH(study.setMapperParamOverrides({ { "sigmaC", 0.0 } }), Catch::Contains("sigmaC = 0"));
+    CHECK(study.paramsFor(recorded).sigmaDTau == 0.3);
+    CHECK(study.paramsFor(recorded).sigmaC == thesis.sigmaC);
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
 TEST_CASE("replay: a refused stroke and one that pins nothing leave the face unchanged")
 {
     const auto& w = test::sketchWorld();

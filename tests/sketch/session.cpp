@@ -40,6 +40,8 @@ Session example()
         if (a != 0) { // the first stroke as sessions before 5 December 2026 have it
             action.reading.refinePasses = a;
             action.reading.refineAnchorRings = a == 1 ? -1 : 4;
+            action.reading.mapperParams
+                = { { "sigmaDTau", 0.1 + 0.2 / 3.0 * a }, { "useSkeleton", a == 1 ? 0.0 : 1.0 }, { "maxCandidatesPerPoint", 48.0 * a } };
         }
         s.actions.push_back(action);
     }
@@ -90,6 +92,12 @@ TEST_CASE("session: save and load round trip exactly, and saving again gives the
     REQUIRE_FALSE(doc["actions"][0]["reading"].contains("refine_passes"));
     REQUIRE_FALSE(back.actions[0].reading.refinePasses.has_value());
     REQUIRE(back.actions[2].reading.refineAnchorRings == 4);
+    // So are the mapper's parameters, exactly.
+    REQUIRE(doc["actions"][2]["reading"]["mapper_params"]["sigmaDTau"] == 0.1 + 0.2 / 3.0 * 2);
+    REQUIRE(doc["actions"][1]["reading"]["mapper_params"]["useSkeleton"] == 0.0);
+    REQUIRE_FALSE(doc["actions"][0]["reading"].contains("mapper_params"));
+    REQUIRE(back.actions[2].reading.mapperParams.at("sigmaDTau") == 0.1 + 0.2 / 3.0 * 2);
+    REQUIRE(back.actions[0].reading.mapperParams.empty());
 }
 
 TEST_CASE("session: a truncated or empty file names the file")
@@ -160,6 +168,15 @@ TEST_CASE("session: every bad field is named by its JSON path")
         { "/actions/1/reading/refine_passes", 17, "actions[1].reading.refine_passes: must lie in [0, 16], found 17" },
         { "/actions/1/reading/refine_passes", 1.5, "actions[1].reading.refine_passes: expected an integer" },
         { "/actions/2/reading/refine_anchor_rings", -2, "actions[2].reading.refine_anchor_rings: must lie in [-1, 4]" },
+        { "/actions/1/reading/mapper_params", json::array(), "actions[1].reading.mapper_params: expected an object" },
+        { "/actions/1/reading/mapper_params/sigmaD", 1.0, "actions[1].reading.mapper_params.sigmaD: mapper parameter 'sigmaD' is unknown" },
+        { "/actions/1/reading/mapper_params/sigmaDTau", "wide", "actions[1].reading.mapper_params.sigmaDTau: expected a number" },
+        { "/actions/1/reading/mapper_params/useSkeleton", 0.5,
+            "actions[1].reading.mapper_params.useSkeleton: mapper parameter useSkeleton = 0.5 must be 0 or 1" },
+        { "/actions/2/reading/mapper_params/maxCandidatesPerPoint", 2.5,
+            "actions[2].reading.mapper_params.maxCandidatesPerPoint: mapper parameter maxCandidatesPerPoint = 2.5 must be a whole number" },
+        { "/actions/2/reading/mapper_params/sigmaDTau", -1.0,
+            "actions[2].reading.mapper_params: mapper parameter sigmaDTau = -1 must be positive" },
         { "/actions/0/stroke/points/1/x", "a", "actions[0].stroke.points[1].x: expected a number" },
         { "/actions/0/stroke/points/1/y", nullptr, "actions[0].stroke.points[1].y: expected a number" },
         { "/actions/0/stroke/points/3/t", -1.0, "actions[0].stroke.points[3].t: a time in ms" },
