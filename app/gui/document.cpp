@@ -48,8 +48,8 @@ sketch::ReplayOutcome Document::addStroke(sketch::StrokeAction action)
     sketch::ReplayOutcome out = replayer_.apply(action);
     if (out.kind != sketch::ReplayOutcome::Kind::Applied)
         return out;
-    // The session records the refinement and parameters the stroke was read with, so that it replays to this
-    // face after a release changes the defaults.
+    // The session records the refinement and the mapper's parameters the stroke was read with,
+    // so that it replays to this face after a release changes the defaults.
     action.reading.refinePasses = out.refine.passes;
     action.reading.refineAnchorRings = out.refine.anchorRings;
     action.reading.mapperParams = sketch::mapperParamValues(out.params);

@@ -55,9 +55,9 @@ public:
     /// Reads `action` against the current face with `mapperOverride` if given, else the
     /// action's mapper, and applies it when it pins anything (forgetting any undone strokes).
     /// A stroke the reader refuses (facesketch::Error) is reported in the outcome and leaves
-    /// everything as it was. Throws Error for an unknown mapper name or parameter
-    /// (paramsFor), a mirror map that cannot
-    /// be found (the face unchanged) or an error of the tracking model (state unchanged).
+    /// everything as it was. Throws Error for an unknown mapper name or parameter (paramsFor),
+    /// a mirror map that cannot be found (the face unchanged) or an error of the tracking model
+    /// (state unchanged).
     ReplayOutcome apply(const StrokeAction& action, std::optional<MapperKind> mapperOverride = std::nullopt);
 
     /// The tracking model's undo and redo of applied strokes (false: nothing to undo/redo).

@@ -242,6 +242,12 @@ TEST_CASE("session: saving a bad session throws naming the field and leaves the 
     bad = example();
     bad.actions[0].stroke.view.width = 0;
     REQUIRE_THROWS_WITH(saveSession(dir / "s.json", bad), Catch::Contains("actions[0].stroke.view.width"));
+    bad = example();
+    bad.actions[1].reading.mapperParams["sigmaQ"] = 1;
+    REQUIRE_THROWS_WITH(saveSession(dir / "s.json", bad), Catch::Contains("actions[1].reading.mapper_params.sigmaQ"));
+    bad = example();
+    bad.actions[2].reading.mapperParams["sigmaC"] = std::numeric_limits<double>::quiet_NaN();
+    REQUIRE_THROWS_WITH(saveSession(dir / "s.json", bad), Catch::Contains("actions[2].reading.mapper_params.sigmaC"));
     REQUIRE(fileText(dir / "s.json") == before);
     for (const auto& entry : fs::directory_iterator(dir.path()))
         REQUIRE(entry.path().filename() == "s.json"); // no temporary left behind
