@@ -39,9 +39,9 @@ struct ReadingOptions {
     std::optional<int> refinePasses;
     std::optional<int> refineAnchorRings;
     /// The mapper's parameters the stroke was read with, by MapperParams field name
-    /// (sketch/mapper.h mapperParamValues; flags 0 or 1), for the same reason. Parameters not
-    /// named, and all of them in sessions written before they were recorded (5 December 2026),
-    /// take the replaying release's defaults.
+    /// (sketch/mapper_params.h mapperParamValues; flags 0 or 1), for the same reason.
+    /// Parameters not named, and all of them in sessions written before they were recorded
+    /// (5 December 2026), take the replaying release's defaults.
     std::map<std::string, double> mapperParams;
 };
 
