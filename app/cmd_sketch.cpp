@@ -38,12 +38,10 @@ void runSketch(const SketchCommand& c)
     // --mapper-param, checked before anything is loaded.
     std::map<std::string, double> overrides;
     for (const std::string& assignment : c.mapperParams) {
-        sketch::MapperParams one; // parses, and names a bad assignment
-        sketch::setMapperParam(one, assignment);
-        const std::string name = assignment.substr(0, assignment.find('='));
-        overrides[name] = sketch::mapperParamValues(one).at(name);
+        const auto [name, value] = sketch::parseMapperParam(assignment);
+        overrides[name] = value;
     }
-    (void)sketch::mapperParamsFrom(overrides); // and their ranges
+    (void)sketch::mapperParamsFrom(overrides); // names, kinds and ranges
     const sketch::Session session = sketch::loadSession(c.session);
     (void)sketch::sessionInputs(session, c.session); // the session's model and dataset must exist
     // -1: each stroke's own mapper (GCC warns about reading an optional here).

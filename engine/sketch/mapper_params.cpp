@@ -89,7 +89,7 @@ void setMapperParam(MapperParams& params, const std::string& name, double value)
     }
 }
 
-void setMapperParam(MapperParams& params, const std::string& assignment)
+std::pair<std::string, double> parseMapperParam(const std::string& assignment)
 {
     const std::size_t eq = assignment.find('=');
     if (eq == std::string::npos)
@@ -104,6 +104,12 @@ void setMapperParam(MapperParams& params, const std::string& assignment)
     } catch (const std::exception&) {
         fail("mapper parameter ", name, ": '", text, "' is not a number");
     }
+    return { name, value };
+}
+
+void setMapperParam(MapperParams& params, const std::string& assignment)
+{
+    const auto [name, value] = parseMapperParam(assignment);
     setMapperParam(params, name, value);
 }
 

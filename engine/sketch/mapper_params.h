@@ -6,6 +6,7 @@
 
 #include <map>
 #include <string>
+#include <utility>
 
 namespace facesketch::sketch {
 
@@ -158,6 +159,9 @@ struct MapperParams {
 /// Error naming an unknown field or a value that does not parse, leaving params unchanged; the
 /// value's range is checked by validate() when the parameters are used.
 void setMapperParam(MapperParams& params, const std::string& assignment);
+/// "NAME=VALUE" split into the name and the number, as setMapperParam reads it (the name not
+/// checked); Error for text without '=' or a value that is not a number.
+std::pair<std::string, double> parseMapperParam(const std::string& assignment);
 /// The same with the name and value apart (a session's recorded parameters; a flag is 0 or 1).
 void setMapperParam(MapperParams& params, const std::string& name, double value);
 
