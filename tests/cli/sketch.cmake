@@ -97,13 +97,16 @@ if(NOT last STREQUAL "all")
 endif()
 
 # The fitting faces: the contour-role faces are sketched (11 here), with the train faces' cloud.
-run(eval strokes ${WORK}/faces.model ${WORK}/faces --views front --mappers hmm --faces contour --max-faces 3 --json ${WORK}/fit.json -q)
+# A --mapper-param is applied after --similar-faces, and the JSON records the count the run used.
+run(eval strokes ${WORK}/faces.model ${WORK}/faces --views front --mappers hmm --faces contour --max-faces 3 --similar-faces 9
+    --mapper-param similarFaces=7 --json ${WORK}/fit.json -q)
 file(READ ${WORK}/fit.json fit)
 string(JSON faces GET "${fit}" results 0 faces)
 string(JSON which GET "${fit}" faces)
 string(JSON ratio GET "${fit}" results 0 ratio)
-if(NOT faces EQUAL 3 OR NOT which STREQUAL "contour" OR NOT ratio LESS 1.0)
-  message(FATAL_ERROR "eval strokes --faces contour: ${faces} ${which} faces, ratio ${ratio}")
+string(JSON similar GET "${fit}" similar_faces)
+if(NOT faces EQUAL 3 OR NOT which STREQUAL "contour" OR NOT ratio LESS 1.0 OR NOT similar EQUAL 7)
+  message(FATAL_ERROR "eval strokes --faces contour: ${faces} ${which} faces, ratio ${ratio}, similar faces ${similar}")
 endif()
 expect_failure("--faces: 'train' is neither test nor contour" eval strokes ${WORK}/faces.model ${WORK}/faces --faces train -q)
 
