@@ -299,6 +299,10 @@ StrokeEvalResult evaluateStrokes(gpu::Device& device, const StrokeEvalData& data
                             return;
                         record.outcome = outcome;
                         record.readMs = readMs;
+                        // A pass that ran before the reader threw (or read nothing) set readAs;
+                        // the stroke itself was not read as anything.
+                        if (outcome != StrokeEvalStroke::Outcome::Read)
+                            record.readAs.clear();
                         if (errors && errors->observations > 0) {
                             record.observations = static_cast<int>(errors->observations);
                             record.planeMm = errors->planeMm / static_cast<double>(errors->observations);

@@ -151,7 +151,7 @@ struct StrokeEvalStroke {
     std::string face, view, mapper;
     std::string feature; ///< the traced contour's name, or "silhouette"
     /// The labelled contour most of its observed vertices lie on (StrokeEvalData::contours), or
-    /// "unlabelled" when most lie on none (silhouettes, suggestive contours); empty unread.
+    /// "unlabelled" when most lie on none (silhouettes, suggestive contours); empty unless read.
     std::string readAs;
     int index = 0;  ///< its place among the view's strokes (view "all": every view's in turn)
     int points = 0; ///< points drawn

@@ -139,6 +139,7 @@ TEST_CASE("stroke_eval: every stroke's reading is kept on request, and adds up t
             REQUIRE(s.points > 0);
             if (s.outcome != evaluation::StrokeEvalStroke::Outcome::Read) {
                 REQUIRE(s.observations == 0);
+                REQUIRE(s.readAs.empty());
                 continue;
             }
             ++read;
