@@ -16,12 +16,13 @@ source "$root/tests/gui/input_lib.sh"
 mkdir -p "$WORK/state" "$out"
 export FACESKETCH_STATE_DIR="$WORK/state"
 cd "$WORK"
-# The built-in data, made and cached by the first run of the app (`facesketch gui` with no data).
-# Its folder as app/gui/cmd_gui.cpp's builtInFolder() names it.
+# The built-in data, made and cached by the first run of the app (`facesketch gui` with no data),
+# which prints the model and dataset it opened.
 "$FACESKETCH" gui --quit-after-frames 2 > app.log 2>&1
-if [ -n "${FACESKETCH_CACHE_DIR:-}" ]; then cache=$FACESKETCH_CACHE_DIR; else cache=${XDG_CACHE_HOME:-$HOME/.cache}/facesketch; fi
-builtin=$cache/builtin-high-v18
-"$FACESKETCH" strokes simulate "$builtin/faces" --model "$builtin/faces.model" --sample face_0230 --view front -o front.json > /dev/null
+model=$(sed -n 's/^gui: model //p' app.log)
+faces=$(sed -n 's/^gui: dataset //p' app.log)
+if [ -z "$model" ] || [ -z "$faces" ]; then echo "gui-shots: the app named no built-in data:" >&2; cat app.log >&2; exit 1; fi
+"$FACESKETCH" strokes simulate "$faces" --model "$model" --sample face_0230 --view front -o front.json > /dev/null
 "$FACESKETCH" gui front.json --size 1280x800 --screenshot "$out/gui-sketch.png" --quit-after-frames 40 > app.log 2>&1
 "$FACESKETCH" gui front.json --size 1280x800 --overlay --screenshot "$out/gui-overlay.png" --quit-after-frames 40 > app.log 2>&1
 

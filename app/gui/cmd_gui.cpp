@@ -510,6 +510,8 @@ void App::install(std::unique_ptr<Loaded> loaded)
     }
     faceChanged();
     viewDirty_ = true;
+    // One path a line, so that a script can take the built-in data's folder from here.
+    std::cout << "gui: model " << loaded_->model.string() << "\ngui: dataset " << loaded_->dataset.string() << std::endl;
     std::cout << "gui: ready, " << loaded_->faceModel->vertexCount() << " vertices, recovery file "
               << (autosave_->file().empty() ? std::string("none (a benchmark)") : autosave_->file().string()) << std::endl;
 }
@@ -1213,9 +1215,10 @@ void App::panels()
     if (ImGui::RadioButton("pose (Tab)", poseMode_))
         setPoseMode(true);
     ImGui::EndDisabled();
-    if (!doc_->posingEnabled()) {
-        ImGui::SameLine();
-        ImGui::TextDisabled("(no pose model: --poses)");
+    if (!doc_->posingEnabled()) { // wrapped on lines of its own: beside the buttons it ran past the panel's edge
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+        ImGui::TextWrapped("no pose model: start the app with --poses POSES.model");
+        ImGui::PopStyleColor();
     }
     if (!poseMode_) {
         static const char* mappers[] = { "nearest", "heuristic", "hmm (4.8)", "simple" };
