@@ -321,13 +321,17 @@ int robustTip(const Vertices& neutral, const Eigen::MatrixXd& modes, const std::
             candidates.push_back(v);
     std::vector<int> within(candidates.size(), 0);
     std::vector<double> total(candidates.size(), 0);
-    for (int j = 0; j < 64; ++j) {
-        const Eigen::VectorXd c = ictCoefficients(0, j, static_cast<int>(modes.cols()));
+    // Every draw's offsets in one product: a row of the column-major modes lies a column's
+    // height apart in memory (640 KB at full resolution), so one dot product per coordinate
+    // missed the cache on every coefficient; two imports side by side took 20 times as long.
+    constexpr int kDraws = 64;
+    Eigen::MatrixXd coefficients(modes.cols(), kDraws);
+    for (int j = 0; j < kDraws; ++j)
+        coefficients.col(j) = ictCoefficients(0, j, static_cast<int>(modes.cols()));
+    const Eigen::MatrixXd offsets = modes * coefficients;
+    for (int j = 0; j < kDraws; ++j) {
         auto position = [&](int v) {
-            Eigen::RowVector3d p = neutral.row(v);
-            for (int k = 0; k < 3; ++k)
-                p(k) += modes.row(3 * v + k).dot(c);
-            return p;
+            return Eigen::RowVector3d(neutral.row(v) + offsets.block<3, 1>(3 * v, j).transpose());
         };
         const Eigen::RowVector3d forward = (position(pie[45]) - position(pie[36])).cross(position(pie[27]) - position(pie[8])).normalized();
         int front = 0;
