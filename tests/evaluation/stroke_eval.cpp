@@ -123,7 +123,10 @@ TEST_CASE("stroke_eval: every stroke's reading is kept on request, and adds up t
     evaluation::StrokeEvalOptions o;
     o.views = { { "front", { 0, 0 } }, { "profile", { 90, 0 } } };
     o.mappers = { sketch::MapperKind::Nearest, sketch::MapperKind::Hmm };
-    REQUIRE(evaluation::evaluateStrokes(test::device(), d, o).strokes.empty()); // off by default
+    evaluation::StrokeEvalOptions plain; // off by default (one view and mapper: the readings are not the point)
+    plain.views = { o.views.front() };
+    plain.mappers = { sketch::MapperKind::Nearest };
+    REQUIRE(evaluation::evaluateStrokes(test::device(), d, plain).strokes.empty());
     o.keepStrokes = true;
     const evaluation::StrokeEvalResult r = evaluation::evaluateStrokes(test::device(), d, o);
     REQUIRE(r.records.size() == 6);
