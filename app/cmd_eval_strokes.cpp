@@ -223,8 +223,8 @@ void runEvalStrokes(const EvalStrokesCommand& c)
             { "supersede_radius_mm", c.supersedeRadius }, { "plane_noise_mm", c.planeNoise }, { "depth_noise_mm", c.depthNoise },
             { "robust_passes", c.robustPasses }, { "robust_k", c.robustK }, { "project_onto_face_space", !c.noProject },
             { "view_plane_only", o.params.viewPlaneOnly }, { "own_contours", o.params.ownContours },
-            { "across_stroke", o.params.acrossStrokeOnly }, { "similar_faces", o.params.similarFaces }, { "refine_passes", o.refine.passes },
-            { "refine_mapper", o.refine.mapper ? sketch::mapperName(*o.refine.mapper) : "same" },
+            { "across_stroke", o.params.acrossStrokeOnly }, { "similar_faces", o.params.similarFaces },
+            { "refine_passes", o.refine.passes }, { "refine_mapper", o.refine.mapper ? sketch::mapperName(*o.refine.mapper) : "same" },
             { "refine_anchor_rings", o.refine.anchorRings }, { "mapper_params", c.mapperParams }, { "oracle", c.oracle },
             { "faces", c.faces }, { "results", records } };
         writeFileAtomically(c.json, [&](std::ostream& out) { out << doc.dump(1) << "\n"; });

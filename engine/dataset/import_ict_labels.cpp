@@ -330,9 +330,7 @@ int robustTip(const Vertices& neutral, const Eigen::MatrixXd& modes, const std::
         coefficients.col(j) = ictCoefficients(0, j, static_cast<int>(modes.cols()));
     const Eigen::MatrixXd offsets = modes * coefficients;
     for (int j = 0; j < kDraws; ++j) {
-        auto position = [&](int v) {
-            return Eigen::RowVector3d(neutral.row(v) + offsets.block<3, 1>(3 * v, j).transpose());
-        };
+        auto position = [&](int v) { return Eigen::RowVector3d(neutral.row(v) + offsets.block<3, 1>(3 * v, j).transpose()); };
         const Eigen::RowVector3d forward = (position(pie[45]) - position(pie[36])).cross(position(pie[27]) - position(pie[8])).normalized();
         int front = 0;
         double frontZ = -std::numeric_limits<double>::infinity();
