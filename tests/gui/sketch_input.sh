@@ -15,7 +15,7 @@ FACESKETCH=$1 WORK=$2
 source "$(dirname "$0")/input_lib.sh"
 make_data
 start_app --session-out "$WORK/app.json" --export-out "$WORK/app.obj" --screenshot "$WORK/shot.png"
-# It names the data it opened, a path a line (tools/gui-shots.sh reads the built-in data's so).
+# It names the data it opened, one path a line (tools/gui-shots.sh finds the built-in data that way).
 grep -qxF "gui: model $WORK/faces.model" "$WORK/app.log" && grep -qxF "gui: dataset $WORK/faces" "$WORK/app.log" \
   || fail "the app did not name its model and dataset: $(head -5 "$WORK/app.log")"
 
