@@ -1305,7 +1305,11 @@ void App::panels()
     if (poseMode_)
         timelinePanel();
 
-    ImGui::SetNextWindowPos({ 10 * scale, 560 * scale }, ImGuiCond_FirstUseEver);
+    // Top right, away from the sketch panel: below it, a taller panel (a wrapped hint, more similar
+    // faces) reached it at small window heights. Collapsed until a user wants other data.
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos({ display.x - 10 * scale, 10 * scale }, ImGuiCond_FirstUseEver, { 1, 0 });
+    ImGui::SetNextWindowSize({ 420 * scale, 0 }, ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);
     ImGui::Begin("Data");
     ImGui::InputText("model", modelPath_, sizeof modelPath_);
