@@ -11,7 +11,7 @@
 set -euo pipefail
 # An X server of its own, whatever DISPLAY is: on a display shared with the tests beside it
 # (ctest -j2 under one xvfb-run), their windows took the keyboard focus and covered this one.
-if [ "${FACESKETCH_OWN_X:-}" != 1 ]; then FACESKETCH_OWN_X=1 exec xvfb-run -a -s "-screen 0 1280x1024x24" bash "$0" "$@"; fi
+if [ "${FACESKETCH_OWN_X:-}" != 1 ]; then FACESKETCH_OWN_X=1 exec xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" bash "$0" "$@"; fi
 FACESKETCH=$1 WORK=$2
 source "$(dirname "$0")/input_lib.sh"
 make_data

@@ -7,7 +7,7 @@ set -euo pipefail
 FACESKETCH=$1 WORK=$2
 if [ "${FACESKETCH_OWN_X:-}" != 1 ]; then
   export FACESKETCH_OWN_X=1
-  exec xvfb-run -a -s "-screen 0 1280x1024x24 -extension MIT-SHM" bash "$0" "$@"
+  exec xvfb-run -a -s "-screen 0 1280x1024x24 -extension MIT-SHM -noreset" bash "$0" "$@"
 fi
 source "$(dirname "$0")/input_lib.sh"
 make_data
