@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (tests/fuzz/, FACESKETCH_FUZZ=ON, clang-14, ASan + UBSan) in
-# build-fuzz/ and runs them one after another, each for SECONDS (default 30).
+# build-fuzz/ and runs them, one per core at a time, each for SECONDS (default 30).
 #   tools/fuzz.sh                    every target, 30 s each
 #   tools/fuzz.sh ply 600            one target for 10 minutes
 #   FUZZ_RUNS=1000000 tools/fuzz.sh model 1800   stop after a million executions (or 30 min)
 #   FUZZ_JOBS=2 ...                  compile with 2 jobs (default: all cores)
+#   FUZZ_PARALLEL=1 ...              run one target at a time (default: one per core)
 #   FUZZ_SEED=1 ...                  libFuzzer's random seed (default: a new one per run); CI fixes
 #                                    it so that a red run is reproducible and a green one stays green
 # The working corpus grows in build-fuzz/corpus/<target> (seeded from tests/fuzz/<target>/);
@@ -31,13 +32,14 @@ cmake --build build-fuzz -j"${FUZZ_JOBS:-$(nproc)}" --target "${targets[@]/#/fuz
 [ -d /dev/shm ] && export TMPDIR=/dev/shm
 export ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-status=0
-for t in "${targets[@]}"; do
-  corpus=build-fuzz/corpus/$t
-  crashes=build-fuzz/crashes/$t
+# One target per core at a time (FUZZ_PARALLEL, default: all cores): each libFuzzer process runs on
+# one core, so on two cores CI's eleven 10-s runs take about a minute instead of two. Each target
+# has its own corpus, log and crash folder; the summary lines print in the targets' order.
+fuzz_one() {
+  local t=$1
+  local corpus=build-fuzz/corpus/$t crashes=build-fuzz/crashes/$t log=build-fuzz/fuzz-$t.log result line runs_done
   mkdir -p "$corpus" "$crashes"
-  log=build-fuzz/fuzz-$t.log
-  runs=()
+  local runs=()
   [ -n "${FUZZ_RUNS:-}" ] && runs=(-runs="$FUZZ_RUNS")
   [ -n "${FUZZ_SEED:-}" ] && runs+=(-seed="$FUZZ_SEED")
   if nice -n 10 "build-fuzz/tests/fuzz/fuzz_$t" "$corpus" "tests/fuzz/$t" -max_total_time="$seconds" "${runs[@]}" \
@@ -46,11 +48,33 @@ for t in "${targets[@]}"; do
     result=ok
   else
     result="FAILED (see $log and $crashes/)"
-    status=1
   fi
   # The last status line ("#N DONE cov: C ft: F ..." or the last "#N ... cov:" before a crash).
   line=$(grep -E '^#[0-9]+' "$log" | tail -1 || true)
   runs_done=$(sed -nE 's/^stat::number_of_executed_units: *([0-9]+)/\1/p' "$log" | tail -1)
-  echo "fuzz $t: ${runs_done:-${line%% *}} runs, cov $(sed -nE 's/.*cov: ([0-9]+).*/\1/p' <<<"$line"), ft $(sed -nE 's/.*ft: ([0-9]+).*/\1/p' <<<"$line"), $result"
+  echo "fuzz $t: ${runs_done:-${line%% *}} runs, cov $(sed -nE 's/.*cov: ([0-9]+).*/\1/p' <<<"$line"), ft $(sed -nE 's/.*ft: ([0-9]+).*/\1/p' <<<"$line"), $result" \
+    >"build-fuzz/fuzz-$t.summary"
+}
+parallel=${FUZZ_PARALLEL:-$(nproc)}
+running=0
+for t in "${targets[@]}"; do
+  rm -f "build-fuzz/fuzz-$t.summary"
+  if [ "$running" -ge "$parallel" ]; then
+    wait -n || true
+    running=$((running - 1))
+  fi
+  fuzz_one "$t" &
+  running=$((running + 1))
+done
+wait
+status=0
+for t in "${targets[@]}"; do
+  if [ -f "build-fuzz/fuzz-$t.summary" ]; then
+    cat "build-fuzz/fuzz-$t.summary"
+    grep -q ', ok$' "build-fuzz/fuzz-$t.summary" || status=1
+  else
+    echo "fuzz $t: no summary (the run did not finish)"
+    status=1
+  fi
 done
 exit $status

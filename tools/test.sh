@@ -15,6 +15,7 @@ git ls-files -z '*.cpp' '*.h' | xargs -0 clang-format --dry-run -Werror
 jobs=$(nproc)
 # Line tables only (-g1): sanitizer reports and crashes still name file and line, and each
 # build compiles a fifth faster than with full -g (CI builds the tree twice; BENCHMARKS.md).
+# The tests' own sources compile at -Og in both builds (FACESKETCH_TEST_OPT, top CMakeLists.txt).
 lines=-g1
 
 if [ "$mode" = sanitize ]; then
@@ -25,7 +26,7 @@ if [ "$mode" = sanitize ]; then
   # the test sources: the engine and the app stay one file per compile, as the README's main
   # command builds them, so an engine or app file missing an include of its own still fails there.
   cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="$lines -O1" \
-        -DFACESKETCH_SANITIZE=ON -DFACESKETCH_WERROR=ON -DCMAKE_UNITY_BUILD=ON
+        -DFACESKETCH_SANITIZE=ON -DFACESKETCH_WERROR=ON -DCMAKE_UNITY_BUILD=ON -DFACESKETCH_TEST_OPT=-Og
   # Mesa's drivers and the validation layer keep process-lifetime allocations that LeakSanitizer
   # would report; everything else (ours) must be leak-free.
   export LSAN_OPTIONS="suppressions=$PWD/tools/lsan.supp:print_suppressions=0"
@@ -34,11 +35,14 @@ if [ "$mode" = sanitize ]; then
 else
   dir=build
   cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 $lines -DNDEBUG" \
-        -DFACESKETCH_WERROR=ON -DFACESKETCH_UNITY_TESTS=ON
+        -DFACESKETCH_WERROR=ON -DFACESKETCH_UNITY_TESTS=ON -DFACESKETCH_TEST_OPT=-Og
 fi
 built=$SECONDS
 cmake --build "$dir" -j"$jobs"
 echo "test.sh: the $mode build took $((SECONDS - built)) s"
 # Under a virtual X display (xvfb-run -a picks a free one): the swapchain and window tests open
 # real windows and present to them (tests/test_window.h); without DISPLAY they skip with a warning.
-xvfb-run -a ctest --test-dir "$dir" --output-on-failure -j"$jobs"
+# -noreset: by default Xvfb resets when its last client leaves, and a client connecting during the
+# reset is refused ("Can't open display"), which failed a window test once when two ran side by
+# side (BENCHMARKS.md, "CI time"). The gui scripts start their Xvfb the same way.
+xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --test-dir "$dir" --output-on-failure -j"$jobs"
