@@ -65,27 +65,30 @@ Mapping mapHmm(const MappingProblem& problem)
                     nearestPoint[static_cast<std::size_t>(c)] = strokeIndex.nearest(screenOf(problem.cloud[static_cast<std::size_t>(c)]));
     }
 
-    // Per layer, what the transitions read of each state, gathered once: its screen position,
+    // Per layer, what the transitions read of each state, gathered once as plain arrays (the
+    // transition's inner loop runs m^2 times per layer and streams them): its screen position,
     // depth (pixels), template vertex on screen, nearest stroke point, and its vertex among the
     // layer's distinct vertices (a point's candidates are a few vertices from many faces, so
     // the ring map is looked up per pair of distinct vertices, not per pair of states).
     struct Layer {
-        std::vector<Eigen::Vector2d> screen, templ, strokePoint;
-        std::vector<double> depth, templDepth;
+        std::vector<double> x, y, templX, templY, strokeX, strokeY, depth, templDepth;
         std::vector<char> labelled;          // the candidate lies on a labelled line
         std::vector<int> local;              // index into vertices
         std::vector<std::uint32_t> vertices; // distinct, in order of first use
     };
     auto layerOf = [&](std::size_t point) {
         Layer L;
-        const std::size_t m = problem.perPoint[point].size();
         std::map<std::uint32_t, int> seen;
-        for (std::size_t j = 0; j < m; ++j) {
-            const int c = problem.perPoint[point][j];
+        for (const int c : problem.perPoint[point]) {
             const Candidate& k = problem.cloud[static_cast<std::size_t>(c)];
-            L.screen.push_back(screenOf(k));
-            L.templ.push_back(problem.templateScreen[k.vertex]);
-            L.strokePoint.push_back(problem.screen[static_cast<std::size_t>(nearestPoint[static_cast<std::size_t>(c)])]);
+            const Eigen::Vector2d& templ = problem.templateScreen[k.vertex];
+            const Eigen::Vector2d& stroke = problem.screen[static_cast<std::size_t>(nearestPoint[static_cast<std::size_t>(c)])];
+            L.x.push_back(k.screen[0]);
+            L.y.push_back(k.screen[1]);
+            L.templX.push_back(templ.x());
+            L.templY.push_back(templ.y());
+            L.strokeX.push_back(stroke.x());
+            L.strokeY.push_back(stroke.y());
             L.depth.push_back(axis.dot(Eigen::Vector3d(k.world[0], k.world[1], k.world[2])) * ppmm);
             L.templDepth.push_back(problem.templateDepth[k.vertex] * ppmm);
             L.labelled.push_back((k.types & ContourLabelled) != 0);
@@ -97,12 +100,15 @@ Mapping mapHmm(const MappingProblem& problem)
         return L;
     };
     Layer previous = layerOf(points[0]);
-    Eigen::MatrixXd hopCost;
+    Eigen::MatrixXd hopCost, hopFrom;
 
-    // Transition (4.48-4.53), one layer at a time (viterbi() asks for layers in order).
+    // Transition (4.48-4.53), one layer at a time (viterbi() asks for layers in order). Column
+    // by column: a column of logT is contiguous, and its entries read the previous layer's
+    // arrays in order.
     auto transition = [&](std::size_t l, Eigen::MatrixXd& logT) {
         Layer next = layerOf(points[l]);
         const Layer& a = previous;
+        const Eigen::Index rows = logT.rows();
         if (params.useConnectivity) {
             hopCost.resize(static_cast<Eigen::Index>(a.vertices.size()), static_cast<Eigen::Index>(next.vertices.size()));
             for (std::size_t u = 0; u < a.vertices.size(); ++u)
@@ -111,34 +117,50 @@ Mapping mapHmm(const MappingProblem& problem)
                     const double psiC = hops < 0 ? params.unreachableHops : hops;
                     hopCost(static_cast<Eigen::Index>(u), static_cast<Eigen::Index>(w)) = -0.5 * square(psiC / params.sigmaC);
                 }
+            // From each previous state (not vertex) to each next vertex.
+            hopFrom.resize(rows, hopCost.cols());
+            for (Eigen::Index j = 0; j < rows; ++j)
+                hopFrom.row(j) = hopCost.row(a.local[static_cast<std::size_t>(j)]);
         }
-        for (Eigen::Index j = 0; j < logT.rows(); ++j) {
-            const std::size_t sj = static_cast<std::size_t>(j);
-            for (Eigen::Index q = 0; q < logT.cols(); ++q) {
-                const std::size_t sq = static_cast<std::size_t>(q);
+        // Locals, not params' fields: the stores to logT could alias them, so the compiler would
+        // load them again for every entry.
+        const bool useStroke = params.useStroke, useSkeleton = params.useSkeleton, depthFromFace = params.strokeDepthFromFace;
+        const double sigmaStroke = params.sigmaStroke, minStep = params.densifyGapPx, skeletonSigma = sigmaSkel;
+        for (Eigen::Index q = 0; q < logT.cols(); ++q) {
+            const std::size_t sq = static_cast<std::size_t>(q);
+            const double nx = next.x[sq], ny = next.y[sq], ntx = next.templX[sq], nty = next.templY[sq];
+            const double npx = next.strokeX[sq], npy = next.strokeY[sq], nd = next.depth[sq], ntd = next.templDepth[sq];
+            const bool nl = next.labelled[sq] != 0;
+            const double* hop = params.useConnectivity ? hopFrom.col(next.local[sq]).data() : nullptr;
+            double* out = logT.col(q).data();
+            for (Eigen::Index j = 0; j < rows; ++j) {
+                const std::size_t sj = static_cast<std::size_t>(j);
                 double logP = 0;
-                if (params.useConnectivity)
-                    logP += hopCost(a.local[sj], next.local[sq]);
-                if (params.useStroke) {
+                if (hop != nullptr)
+                    logP += hop[j];
+                const double dx = nx - a.x[sj], dy = ny - a.y[sj];
+                if (useStroke) {
                     // c' = screen xy and the depth along the view axis, both in pixels; along a
                     // labelled line, the depth the current face's line turns through is not
                     // charged (MapperParams::strokeDepthFromFace).
-                    double dz = next.depth[sq] - a.depth[sj];
-                    if (params.strokeDepthFromFace && a.labelled[sj] && next.labelled[sq])
-                        dz -= next.templDepth[sq] - a.templDepth[sj];
-                    const double moved = std::sqrt((next.screen[sq] - a.screen[sj]).squaredNorm() + dz * dz);
-                    const double step = (next.strokePoint[sq] - a.strokePoint[sj]).norm();
+                    double dz = nd - a.depth[sj];
+                    if (depthFromFace && nl && a.labelled[sj] != 0)
+                        dz -= ntd - a.templDepth[sj];
+                    const double moved = std::sqrt(dx * dx + dy * dy + dz * dz);
+                    const double sx = npx - a.strokeX[sj], sy = npy - a.strokeY[sj];
+                    const double step = std::sqrt(sx * sx + sy * sy);
                     // The ratio of 4.49, its denominator at least the stroke's sampling step
                     // (finer displacements are not resolved; two candidates sharing their
                     // nearest point would divide by zero).
-                    const double psiStroke = (moved - step) / std::max(step, params.densifyGapPx);
-                    logP -= 0.5 * square(psiStroke / params.sigmaStroke);
+                    const double psiStroke = (moved - step) / std::max(step, minStep);
+                    logP -= 0.5 * square(psiStroke / sigmaStroke);
                 }
-                if (params.useSkeleton) {
-                    const double psiSkel = ((next.screen[sq] - a.screen[sj]) - (next.templ[sq] - a.templ[sj])).norm();
-                    logP -= 0.5 * square(psiSkel / sigmaSkel);
+                if (useSkeleton) {
+                    const double ex = dx - (ntx - a.templX[sj]), ey = dy - (nty - a.templY[sj]);
+                    const double psiSkel = std::sqrt(ex * ex + ey * ey);
+                    logP -= 0.5 * square(psiSkel / skeletonSigma);
                 }
-                logT(j, q) = logP;
+                out[j] = logP;
             }
         }
         previous = std::move(next);

@@ -285,11 +285,23 @@ void TrackingModel::apply(const StrokeReading& reading, const ApplyOptions& opti
     }
     // Distances in the view plane (in 3D for a reading without a view).
     const Eigen::Matrix3d measure = hasView ? Eigen::Matrix3d(P.transpose() * P) : Eigen::Matrix3d::Identity();
+    // Each segment's start, measured direction and its squared length, once: the test below
+    // runs for every constrained vertex against every segment.
+    struct Segment {
+        Eigen::Vector3d a, d;
+        double dd;
+    };
+    std::vector<Segment> segments;
+    segments.reserve(drawn.size());
+    for (const auto& [a, b] : drawn) {
+        const Eigen::Vector3d d = measure * (b - a);
+        segments.push_back({ a, d, d.squaredNorm() });
+    }
     auto nearDrawn = [&](const Eigen::Vector3d& x) {
-        for (const auto& [a, b] : drawn) {
-            const Eigen::Vector3d d = measure * (b - a), q = measure * (x - a);
-            const double t = d.squaredNorm() > 0 ? std::clamp(q.dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-            if ((q - t * d).norm() <= options_.supersedeRadius)
+        for (const Segment& s : segments) {
+            const Eigen::Vector3d q = measure * (x - s.a);
+            const double t = s.dd > 0 ? std::clamp(q.dot(s.d) / s.dd, 0.0, 1.0) : 0.0;
+            if ((q - t * s.d).norm() <= options_.supersedeRadius)
                 return true;
         }
         return false;

@@ -40,11 +40,16 @@ ViterbiPath viterbi(const Eigen::VectorXd& logInitial, const std::vector<Eigen::
         transition(i, logTransition);
         Eigen::VectorXd next(m);
         back[i].assign(static_cast<std::size_t>(m), 0);
+        // Plain pointers in the O(m^2) loop: a column of the transition is contiguous, and
+        // Eigen's checked element access would cost more than the sum in the debug builds.
+        const double* from = score.data();
+        const Eigen::Index rows = score.size();
         for (Eigen::Index q = 0; q < m; ++q) {
+            const double* column = logTransition.col(q).data();
             double best = minusInf;
             int arg = 0;
-            for (Eigen::Index j = 0; j < score.size(); ++j) {
-                const double s = score[j] + logTransition(j, q);
+            for (Eigen::Index j = 0; j < rows; ++j) {
+                const double s = from[j] + column[j];
                 if (s > best) { // strict: the lowest index wins a tie
                     best = s;
                     arg = static_cast<int>(j);
