@@ -23,8 +23,9 @@ if [ "$mode" = sanitize ]; then
   # A unity build (CMake joins the sources of each target in batches of 8): the sanitizer build
   # is CI's longest step, and most of a test file's compile time is the Catch2 and Eigen headers
   # it shares with its neighbours (BENCHMARKS.md, "CI time"). The release build below joins only
-  # the test sources: the engine and the app stay one file per compile, as the README's main
-  # command builds them, so an engine or app file missing an include of its own still fails there.
+  # the test sources (and the app's command files, always joined: app/CMakeLists.txt): the engine
+  # stays one file per compile, as the README's main command builds it, so an engine file missing
+  # an include of its own still fails there.
   cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="$lines -O1" \
         -DFACESKETCH_SANITIZE=ON -DFACESKETCH_WERROR=ON -DCMAKE_UNITY_BUILD=ON -DFACESKETCH_TEST_OPT=-Og
   # Mesa's drivers and the validation layer keep process-lifetime allocations that LeakSanitizer
