@@ -17,6 +17,7 @@ jobs=$(nproc)
 # build compiles a fifth faster than with full -g (CI builds the tree twice; BENCHMARKS.md).
 # The tests' own sources compile at -Og in both builds (FACESKETCH_TEST_OPT, top CMakeLists.txt).
 lines=-g1
+testopt=-Og
 
 if [ "$mode" = sanitize ]; then
   dir=build-asan
@@ -27,7 +28,7 @@ if [ "$mode" = sanitize ]; then
   # stays one file per compile, as the README's main command builds it, so an engine file missing
   # an include of its own still fails there.
   cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="$lines -O1" \
-        -DFACESKETCH_SANITIZE=ON -DFACESKETCH_WERROR=ON -DCMAKE_UNITY_BUILD=ON -DFACESKETCH_TEST_OPT=-Og
+        -DFACESKETCH_SANITIZE=ON -DFACESKETCH_WERROR=ON -DCMAKE_UNITY_BUILD=ON -DFACESKETCH_TEST_OPT="$testopt"
   # Mesa's drivers and the validation layer keep process-lifetime allocations that LeakSanitizer
   # would report; everything else (ours) must be leak-free.
   export LSAN_OPTIONS="suppressions=$PWD/tools/lsan.supp:print_suppressions=0"
@@ -36,7 +37,7 @@ if [ "$mode" = sanitize ]; then
 else
   dir=build
   cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 $lines -DNDEBUG" \
-        -DFACESKETCH_WERROR=ON -DFACESKETCH_UNITY_TESTS=ON -DFACESKETCH_TEST_OPT=-Og
+        -DFACESKETCH_WERROR=ON -DFACESKETCH_UNITY_TESTS=ON -DFACESKETCH_TEST_OPT="$testopt"
 fi
 built=$SECONDS
 cmake --build "$dir" -j"$jobs"
