@@ -12,10 +12,7 @@ ViterbiPath viterbi(
     const std::size_t n = logEmission.size();
     if (logTransition.size() != n)
         fail("viterbi: ", n, " emission layers but ", logTransition.size(), " transition layers");
-    for (std::size_t i = 1; i < n; ++i)
-        if (logTransition[i].rows() != logEmission[i - 1].size() || logTransition[i].cols() != logEmission[i].size())
-            fail("viterbi: transition ", i, " is ", logTransition[i].rows(), " by ", logTransition[i].cols(), ", layers ", i - 1, " and ",
-                i, " have ", logEmission[i - 1].size(), " and ", logEmission[i].size(), " states");
+    // Each matrix's shape is checked by the general form, after the copy.
     return viterbi(logInitial, logEmission, [&](std::size_t i, Eigen::MatrixXd& out) { out = logTransition[i]; });
 }
 
@@ -38,6 +35,11 @@ ViterbiPath viterbi(const Eigen::VectorXd& logInitial, const std::vector<Eigen::
         const Eigen::Index m = logEmission[i].size();
         logTransition.resize(score.size(), m);
         transition(i, logTransition);
+        // The loop below reads the matrix through plain pointers: a transition that changed its
+        // shape is refused, not read out of bounds.
+        if (logTransition.rows() != score.size() || logTransition.cols() != m)
+            fail("viterbi: transition ", i, " is ", logTransition.rows(), " by ", logTransition.cols(), ", layers ", i - 1, " and ", i,
+                " have ", score.size(), " and ", m, " states");
         Eigen::VectorXd next(m);
         back[i].assign(static_cast<std::size_t>(m), 0);
         // Plain pointers in the O(m^2) loop: a column of the transition is contiguous, and

@@ -28,7 +28,7 @@ ViterbiPath viterbi(
 
 /// The same, with each transition matrix made on demand: `transition(i, out)` fills `out`
 /// (m_{i-1} by m_i, already sized) for layer i >= 1, so memory stays O(n m + m^2) for long
-/// strokes.
+/// strokes. Throws Error naming the layer if `transition` leaves `out` in another shape.
 using TransitionFn = std::function<void(std::size_t layer, Eigen::MatrixXd& logTransition)>;
 ViterbiPath viterbi(const Eigen::VectorXd& logInitial, const std::vector<Eigen::VectorXd>& logEmission, const TransitionFn& transition);
 

@@ -87,4 +87,8 @@ TEST_CASE("viterbi: ties pick the lowest indices, impossible trellises still giv
     REQUIRE_THROWS_WITH(
         viterbi(initial, emission, { Eigen::MatrixXd(), Eigen::MatrixXd::Zero(3, 2) }), Catch::Contains("transition 1 is 3 by 2"));
     REQUIRE_THROWS_WITH(viterbi(Eigen::VectorXd::Zero(3), emission, { Eigen::MatrixXd(), t }), Catch::Contains("3 initial values"));
+    // A transition made on demand that leaves the asked shape is refused the same way.
+    const TransitionFn reshaping = [](std::size_t, Eigen::MatrixXd& out) { out = Eigen::MatrixXd::Zero(2, 1); };
+    REQUIRE_THROWS_WITH(
+        viterbi(initial, emission, reshaping), Catch::Contains("transition 1 is 2 by 1, layers 0 and 1 have 2 and 2 states"));
 }
