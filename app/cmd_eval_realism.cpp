@@ -87,6 +87,10 @@ void runEvalRealism(const EvalRealismCommand& c)
     std::cout << "antisymmetric share of the variation, central region\n";
     printAsymmetry("data", r.dataAsymmetry);
     printAsymmetry("reference", r.referenceAsymmetry);
+    std::cout << "placement: SD over faces of the shared landmarks' centroid, x / y / z mm\n";
+    for (const auto& [name, sd] : { std::pair { "data", r.dataPlacement }, std::pair { "reference", r.referencePlacement } })
+        std::cout << std::left << std::setw(20) << name << std::right << std::setw(8) << sd.x() << std::setw(8) << sd.y() << std::setw(8)
+                  << sd.z() << "\n";
 
     if (!c.json.empty()) {
         nlohmann::json distances = nlohmann::json::array();
@@ -104,7 +108,10 @@ void runEvalRealism(const EvalRealismCommand& c)
             { "spectrum",
                 { { "data_central", spectrumJson(r.dataCentral) }, { "reference_central", spectrumJson(r.referenceCentral) },
                     { "data_skin", spectrumJson(r.dataSkin) }, { "reference_skin", spectrumJson(r.referenceSkin) } } },
-            { "asymmetry", { { "data", asymmetryJson(r.dataAsymmetry) }, { "reference", asymmetryJson(r.referenceAsymmetry) } } } };
+            { "asymmetry", { { "data", asymmetryJson(r.dataAsymmetry) }, { "reference", asymmetryJson(r.referenceAsymmetry) } } },
+            { "placement_sd_mm",
+                { { "data", { r.dataPlacement.x(), r.dataPlacement.y(), r.dataPlacement.z() } },
+                    { "reference", { r.referencePlacement.x(), r.referencePlacement.y(), r.referencePlacement.z() } } } } };
         writeFileAtomically(c.json, [&](std::ostream& out) { out << doc.dump(1) << "\n"; });
         std::cout << "wrote " << c.json << "\n";
     }
@@ -120,7 +127,8 @@ void addEvalRealismCommand(CLI::App& eval)
                 "distance between the two mean faces over the central face region (both directions, area-weighted RMS, 95th\n"
                 "percentile, max; also per region: eyes, brows, nose, mouth, chin), and for each set the number of PCA modes\n"
                 "holding 90, 95 and 99% of the shape variance (central region area-weighted, and the whole skin) and the\n"
-                "antisymmetric share of that variance over the central region. Every sample of both datasets is used. --json writes the "
+                "antisymmetric share of that variance over the central region, and how far each set's faces move in their frame\n"
+                "(the SD of their landmarks' centroid). Every sample of both datasets is used. --json writes the "
                 "same figures and each spectrum (docs/realism.md).");
     cmd->add_option("dataset", c->dataset, "Dataset folder to measure (e.g. facesketch synth)")->required();
     cmd->add_option("--reference", c->reference, "Reference dataset folder (e.g. an ICT import)")->required();

@@ -308,6 +308,25 @@ Asymmetry antisymmetricShare(const FaceSet& set, const Eigen::VectorXd& weights)
     return a;
 }
 
+Eigen::Vector3d placementSpread(const FaceSet& set, const std::vector<std::string>& landmarks)
+{
+    if (landmarks.empty())
+        fail(set.name, ": placement needs at least one landmark");
+    const Eigen::Index n = set.shapes.rows();
+    if (n < 2)
+        fail(set.name, ": placement needs at least 2 samples, it has ", n);
+    Eigen::MatrixXd centroids = Eigen::MatrixXd::Zero(n, 3);
+    for (const std::string& l : landmarks) {
+        const auto it = set.landmarks.find(l);
+        if (it == set.landmarks.end())
+            fail(set.name, ": placement: no landmark ", l);
+        centroids += set.shapes.middleCols(3 * it->second, 3);
+    }
+    centroids /= static_cast<double>(landmarks.size());
+    const Eigen::MatrixXd centred = centroids.rowwise() - centroids.colwise().mean();
+    return (centred.colwise().squaredNorm() / static_cast<double>(n - 1)).cwiseSqrt().transpose();
+}
+
 Spectrum shapeSpectrum(const Eigen::MatrixXd& shapes, const Eigen::VectorXd& weights)
 {
     if (shapes.rows() < 2)
@@ -427,6 +446,8 @@ RealismReport evaluateRealism(const FaceSet& data, const FaceSet& reference, con
     };
     report.dataAsymmetry = antisymmetricShare(data, centralAreas(data, dataOwner));
     report.referenceAsymmetry = antisymmetricShare(reference, centralAreas(reference, refOwner));
+    report.dataPlacement = placementSpread(data, report.landmarks);
+    report.referencePlacement = placementSpread(reference, report.landmarks);
     return report;
 }
 

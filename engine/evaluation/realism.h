@@ -45,6 +45,13 @@
 // by the square root of its area so the inner product of two faces approximates the surface
 // integral and the count does not depend on the mesh's resolution.
 //
+// Placement. How far a set's faces move in their own frame: per axis, the standard deviation
+// over faces of the centroid of each face's shared central landmarks (those the alignment
+// uses). The spectrum takes coordinates as stored, so this drift is variance to it, and in its
+// first mode: a set whose faces drift more than real ones spends modes on where they sit
+// rather than on their shape (docs/realism.md, "v19": the generator's faces drifted 2.3 mm up
+// and down and 3.5 mm in depth until v18, ICT-FaceKit's 1.1 and 1.2 mm).
+//
 // Asymmetry. The share of a set's shape variation that is antisymmetric, over its central
 // region: each face's offset from the set's mean, d_v = x_v - mean_v, splits into a symmetric
 // and an antisymmetric part through the mean face's mirror plane (fitted to its "_l" / "_r"
@@ -127,6 +134,8 @@ struct RealismReport {
     SurfaceDistance open;                       ///< "open": as "all" without the enclosed vertices of either set
     Spectrum dataSkin, dataCentral, referenceSkin, referenceCentral;
     Asymmetry dataAsymmetry, referenceAsymmetry; ///< over each set's central region
+    /// Placement (above): SD over faces of the shared central landmarks' centroid, x / y / z mm.
+    Eigen::Vector3d dataPlacement = Eigen::Vector3d::Zero(), referencePlacement = Eigen::Vector3d::Zero();
 };
 
 /// The measures above, `data` against `reference`. Throws Error naming both sets if they share
@@ -140,6 +149,11 @@ RealismReport evaluateRealism(const FaceSet& data, const FaceSet& reference, con
 /// count is the smallest k whose leading variances sum to at least that fraction of the total.
 /// Throws Error for fewer than 2 samples or a weight count other than #V.
 Spectrum shapeSpectrum(const Eigen::MatrixXd& shapes, const Eigen::VectorXd& weights = {});
+
+/// Placement (above): the standard deviation over `set`'s faces (n - 1 in the denominator) of the
+/// centroid of `landmarks`, per axis, mm. Throws Error naming the set and the landmark if one is
+/// not in the set, and for no landmark or fewer than 2 samples.
+Eigen::Vector3d placementSpread(const FaceSet& set, const std::vector<std::string>& landmarks);
 
 /// The antisymmetric share of `set`'s variation (above), each vertex weighted by `weights` (#V
 /// non-negative values; 0 leaves a vertex out). Throws Error for a weight count other than #V,

@@ -431,3 +431,37 @@ TEST_CASE("realism: bad input names the set and the value")
 
     REQUIRE_THROWS_WITH(shapeSpectrum(data.shapes, Eigen::VectorXd::Ones(3)), Catch::Contains("3 weights"));
 }
+
+TEST_CASE("realism: placement is the SD of the landmarks' centroid over faces, and a moved set's spectrum pays for it")
+{
+    // Faces of one shape, each moved by its own offset: the centroid's SD is the offsets' SD,
+    // axis by axis, and the spectrum sees nothing but the move (one mode per moving axis).
+    const FaceSet still = gridSet("still", 8, [](int, double x, double y) { return 0.01 * (x * x + y * y); });
+    FaceSet moved = still;
+    moved.name = "moved";
+    Eigen::MatrixXd offsets(8, 3);
+    for (int s = 0; s < 8; ++s) {
+        offsets.row(s) << 0.0, 2.0 * std::sin(1.7 * s), 1.0 * std::cos(2.3 * s + 0.4);
+        for (Eigen::Index v = 0; v < moved.shapes.cols() / 3; ++v)
+            moved.shapes.row(s).segment<3>(3 * v) += offsets.row(s);
+    }
+    const std::vector<std::string> landmarks { "en_r", "en_l", "prn", "gn" };
+    const Eigen::Vector3d none = placementSpread(still, landmarks);
+    REQUIRE(none.norm() < 1e-12);
+    const Eigen::Vector3d spread = placementSpread(moved, landmarks);
+    const Eigen::MatrixXd centred = offsets.rowwise() - offsets.colwise().mean();
+    for (int a = 0; a < 3; ++a)
+        REQUIRE(spread(a) == Approx(std::sqrt(centred.col(a).squaredNorm() / 7)).margin(1e-12));
+    REQUIRE(spread(1) > 1.0);
+    const Spectrum s = shapeSpectrum(moved.shapes);
+    REQUIRE(s.totalVariance == Approx(static_cast<double>(moved.shapes.cols() / 3) * (spread.squaredNorm())).epsilon(1e-9));
+    REQUIRE(s.modes99 == 2);
+
+    // The report carries both sets' placement, over the landmarks it aligned on.
+    const RealismReport r = evaluateRealism(moved, still);
+    REQUIRE(r.dataPlacement.isApprox(placementSpread(moved, r.landmarks), 1e-12));
+    REQUIRE(r.referencePlacement.norm() < 1e-12);
+
+    REQUIRE_THROWS_WITH(placementSpread(still, { "en_r", "sn" }), Catch::Contains("still") && Catch::Contains("no landmark sn"));
+    REQUIRE_THROWS_WITH(placementSpread(still, {}), Catch::Contains("at least one landmark"));
+}
