@@ -108,7 +108,19 @@ struct FaceTopology {
 /// vertices). Deterministic; the same resolution always gives the same topology.
 FaceTopology buildFaceTopology(Resolution resolution);
 
-/// The vertices of one face in one pose: #V by 3, mm, in the topology's vertex order.
+/// Where a face sits in the dataset's frame (v19). The frame is the head's centre C (above), so
+/// a longer or deeper face reaches further from it: the centroid of a face's landmarks moved
+/// 2.3 mm up and down and 3.5 mm in depth from face to face (SD), where ICT-FaceKit's move 1.1
+/// and 1.2 mm. That drift held half of the set's variance in its first mode, so the spectrum's
+/// 15 / 35 modes (issue 16) were reached only with lumpier shape fields. Now each face is moved
+/// towards kLandmarkCentre (mm; the mean of that centroid over seed 1's 250 high faces of v18)
+/// and keeps kDriftKept of its offset from it along x, y and z: 1.1 and 1.2 mm SD, as in
+/// ICT-FaceKit (docs/realism.md, "v19"). Each pose moves by its neutral face's move.
+inline constexpr double kLandmarkCentre[3] = { 0.0, -19.2, 75.2 };
+inline constexpr double kDriftKept[3] = { 1.0, 0.5, 0.35 };
+
+/// The vertices of one face in one pose: #V by 3, mm, in the topology's vertex order, placed by
+/// kLandmarkCentre and kDriftKept.
 Vertices synthesizeFace(const FaceTopology& topology, const FaceParams& params, const FaceActions& actions = {});
 
 } // namespace facesketch::dataset

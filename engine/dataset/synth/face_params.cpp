@@ -202,21 +202,21 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
         p.detail.push_back(b);
     }
 
-    // Shape fields: symmetric ones share a factor per lattice row and the face-wide factors;
-    // antisymmetric ones are independent and smaller (faces are nearly symmetric: 1.4 mm,
-    // 0.9 until v14, makes the antisymmetric share of the set's variation over the central face
-    // 2.0%, ICT-FaceKit's 1.6%, v14's 0.8%: `facesketch eval realism`). The symmetric ones have
-    // non-zero means (kFieldMeans, fitted with the means above); the antisymmetric ones' stay 0.
+    // Shape fields, the face's own variation about the population's mean fields (kFieldMeans):
+    // symmetric ones share a factor per lattice row and the face-wide factors; antisymmetric
+    // ones are independent and smaller (faces are nearly symmetric). v19 (wider bumps, faces
+    // placed as ICT-FaceKit's are, face_generator.h): 2.2 and 0.7 mm keep the spectrum's 15 / 35
+    // modes, and the antisymmetric share of the set's variation over the central face is 1.6%,
+    // ICT-FaceKit's 1.6%; until v18 2.9 and 1.4 mm on 0.2 rad bumps (docs/realism.md, "v19").
     double rowFactor[7];
     for (double& u : rowFactor)
         u = rng.normal();
-    constexpr double kSymmetricSd = 2.9, kAsymmetricSd = 1.4, kRowWeight = 0.5;
+    constexpr double kSymmetricSd = 2.2, kAsymmetricSd = 0.7, kRowWeight = 0.5;
     p.shapeModes.resize(kShapeFields);
     for (int k = 0; k < kShapeFields; ++k) {
         const double z = k < 28 ? factors.mix(rng.normal()) : rng.normal();
-        p.shapeModes[static_cast<size_t>(k)] = k < 28
-            ? shapeFieldMeans()[static_cast<size_t>(k)] + kSymmetricSd * (kRowWeight * rowFactor[k / 4] + std::sqrt(1 - sq(kRowWeight)) * z)
-            : kAsymmetricSd * z;
+        p.shapeModes[static_cast<size_t>(k)]
+            = k < 28 ? kSymmetricSd * (kRowWeight * rowFactor[k / 4] + std::sqrt(1 - sq(kRowWeight)) * z) : kAsymmetricSd * z;
     }
     // Drawn last so the parameters above keep their draws from before it was added (issue 16).
     p.paranasalHollow = n(6.0, 1.0); // ICT: 4.5, then 5.7 before
@@ -235,8 +235,6 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
 
 namespace {
 
-constexpr double kWidth = 0.2;
-
 /// Field k's place on the lattice (face_params.h): its row and column, and whether it is
 /// symmetric. Antisymmetric fields use the off-midline columns 1..3 of each row.
 struct FieldCell {
@@ -252,15 +250,15 @@ FieldCell fieldCell(int k)
 
 } // namespace
 
-double shapeField(int k, double theta, double phi)
+double shapeField(int k, double theta, double phi, double width)
 {
     const auto [row, col, symmetric] = fieldCell(k);
     const double phiC = 0.55 - 0.25 * row, thetaC = 0.3 * col;
     const double dPhi = sq(phi - phiC);
-    const double right = std::exp(-(sq(theta + thetaC) + dPhi) / sq(kWidth));
+    const double right = std::exp(-(sq(theta + thetaC) + dPhi) / sq(width));
     if (col == 0)
         return right;
-    const double left = std::exp(-(sq(theta - thetaC) + dPhi) / sq(kWidth));
+    const double left = std::exp(-(sq(theta - thetaC) + dPhi) / sq(width));
     return symmetric ? left + right : left - right;
 }
 
@@ -276,16 +274,16 @@ const std::vector<double>& shapeFieldMeans()
 
 namespace {
 
-// The 49 fields at (theta, phi): each bump is exp(-dtheta^2 / w^2) exp(-dphi^2 / w^2), so row and
-// column factors (14 distinct exponentials) give all of them.
-std::array<double, kShapeFields> shapeFieldValues(double theta, double phi)
+// The 49 fields at (theta, phi) for bumps of one width: each bump is exp(-dtheta^2 / w^2)
+// exp(-dphi^2 / w^2), so row and column factors (14 distinct exponentials) give all of them.
+std::array<double, kShapeFields> shapeFieldValues(double theta, double phi, double width)
 {
     double row[7], right[4], left[4];
     for (int j = 0; j < 7; ++j)
-        row[j] = std::exp(-sq(phi - (0.55 - 0.25 * j)) / sq(kWidth));
+        row[j] = std::exp(-sq(phi - (0.55 - 0.25 * j)) / sq(width));
     for (int c = 0; c < 4; ++c) {
-        right[c] = std::exp(-sq(theta + 0.3 * c) / sq(kWidth));
-        left[c] = std::exp(-sq(theta - 0.3 * c) / sq(kWidth));
+        right[c] = std::exp(-sq(theta + 0.3 * c) / sq(width));
+        left[c] = std::exp(-sq(theta - 0.3 * c) / sq(width));
     }
     std::array<double, kShapeFields> values;
     for (int k = 0; k < kShapeFields; ++k) {
@@ -308,8 +306,7 @@ double dot(const std::vector<double>& coefficients, const std::array<double, kSh
 
 std::array<double, 2> shapeFieldSums(const std::vector<double>& a, const std::vector<double>& b, double theta, double phi)
 {
-    const std::array<double, kShapeFields> values = shapeFieldValues(theta, phi);
-    return { dot(a, values), dot(b, values) };
+    return { dot(a, shapeFieldValues(theta, phi, kFieldWidth)), dot(b, shapeFieldValues(theta, phi, kMeanFieldWidth)) };
 }
 
 } // namespace facesketch::dataset

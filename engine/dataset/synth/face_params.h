@@ -17,7 +17,8 @@
 // Shape fields (issue 16): 49 smooth radial fields (shapeField) with normal coefficients, the
 // symmetric ones correlated along each row of the lattice (a shared factor per elevation, weight
 // 0.5), so faces vary along many more directions than the measures above, with neighbouring
-// regions moving together. Their SDs were set by the spectrum of `facesketch eval realism`
+// regions moving together; a face's own variation on wider bumps than the population's mean
+// fields (v19). Their SDs were set by the spectrum of `facesketch eval realism`
 // against an ICT import, and the symmetric ones' means (28 numbers) by its mean-face distance,
 // with the parameter means: statistics of the ICT set, not any ICT vertex.
 //
@@ -111,27 +112,36 @@ struct FaceParams {
 
     std::vector<DetailBump> detail;
 
-    /// Coefficients (mm) of the generator's smooth shape fields (shapeField below), one per
-    /// field: radial offsets of regions of the face beyond what the anthropometric measures
-    /// above describe, so the population varies along many independent directions (issue 16).
+    /// A face's own coefficients (mm) of the generator's smooth shape fields (shapeField below),
+    /// one per field, at kFieldWidth: radial offsets of regions of the face beyond what the
+    /// anthropometric measures above describe, so the population varies along many independent
+    /// directions (issue 16). They are the face's departure from the population, whose mean
+    /// shape fields (shapeFieldMeans, at kMeanFieldWidth) every face shares.
     std::vector<double> shapeModes;
 };
 
 /// The smooth shape fields of the generator: a 7 x 4 lattice of Gaussian bumps over the face
-/// chart (elevation 0.55 .. -0.95 rad in steps of 0.25, azimuth |theta| 0, 0.3, 0.6, 0.9 rad,
-/// width 0.2 rad), each bump mirrored to both sides: the first 28 fields are symmetric (left +
-/// right), the next 21 antisymmetric (left - right, the off-midline columns). Field k at
-/// (theta, phi) in radians (face_generator.h's chart); each bump peaks at 1 (-1 on the right
+/// chart (elevation 0.55 .. -0.95 rad in steps of 0.25, azimuth |theta| 0, 0.3, 0.6, 0.9 rad),
+/// each bump mirrored to both sides: the first 28 fields are symmetric (left + right), the next
+/// 21 antisymmetric (left - right, the off-midline columns). Field k at (theta, phi) in radians
+/// (face_generator.h's chart), bumps exp(-d^2 / width^2); each bump peaks at 1 (-1 on the right
 /// side of an antisymmetric field).
 inline constexpr int kShapeFields = 49;
-double shapeField(int k, double theta, double phi);
-/// { sum_k a[k] * shapeField(k, theta, phi), the same for b }, each over its first
-/// min(#coefficients, 49) fields, by separable factors (14 exponentials instead of 91, shared by
-/// both sums): what the generator evaluates, a face's coefficients and the population means.
+/// The population's mean fields are bumps 0.2 rad wide: they were fitted at that width to the
+/// ICT-FaceKit mean face. A face's own variation uses wider bumps, 0.28 rad (v19): at 0.2 rad
+/// and 2.9 mm the lattice's independent bumps read as lumps on cheeks and temples, and the same
+/// spectrum needs no such lumps once each face is placed by its landmarks (face_generator.h,
+/// docs/realism.md "v19").
+inline constexpr double kMeanFieldWidth = 0.2, kFieldWidth = 0.28;
+double shapeField(int k, double theta, double phi, double width);
+/// { sum_k a[k] * shapeField(k, theta, phi, kFieldWidth), sum_k b[k] * shapeField(k, theta, phi,
+/// kMeanFieldWidth) }, each over its first min(#coefficients, 49) fields, by separable factors
+/// (28 exponentials instead of 98): what the generator evaluates, a face's own coefficients and
+/// the population means.
 std::array<double, 2> shapeFieldSums(const std::vector<double>& a, const std::vector<double>& b, double theta, double phi);
-/// The population means of the 49 fields' coefficients (mm): non-zero for the 28 symmetric
-/// ones (fitted to the ICT-FaceKit mean face with the parameter means, issue 16), 0 for the
-/// antisymmetric ones. sampleFaceParams draws each face's coefficients around them.
+/// The population means of the 49 fields' coefficients (mm, at kMeanFieldWidth): non-zero for
+/// the 28 symmetric ones (fitted to the ICT-FaceKit mean face with the parameter means, issue
+/// 16), 0 for the antisymmetric ones.
 const std::vector<double>& shapeFieldMeans();
 
 /// The face of identity `index` in the population of `seed`: identity i's parameters depend

@@ -8,6 +8,7 @@
 // (face_params.cpp); the landmark set of thesis Table 3.1; the 36 poses of thesis 5.2.
 #include "dataset/synth/face_generator.h"
 
+#include "core/error.h"
 #include "dataset/synth/face_frame.h"
 
 #include <Eigen/Geometry>
@@ -354,7 +355,7 @@ double soft(const Frame& f, double theta0, double phi0, double X, double Y, int 
     // The population's mean fields (shapeFieldMeans) are calmed over all of the nose, whose
     // own parameters set its mean shape: 15% of a mean field's slope there tilts the flat
     // lobule so its most forward point leaves prn. A face's own variation keeps 15%.
-    const auto [fields, meanFields] = shapeFieldSums(p.shapeModes, shapeFieldMeans(), theta0, phi0);
+    const auto [fields, meanFields] = shapeFieldSums(p.shapeModes, shapeFieldMeans(), theta0, phi0); // the face's own, the population's
     // The mean fields are calmed over a wider, softer window round the lips than a face's own
     // variation (v16): the mean fields stand well forward there (fitted without the lips), and
     // the variation's window, exp(-u^4 - v^4), rises so steeply 12 mm above the slit that the
@@ -374,8 +375,7 @@ double soft(const Frame& f, double theta0, double phi0, double X, double Y, int 
     // moves 1.56 mm RMS from ICT-FaceKit's (1.17 before): near gn ICT's face asks for what the
     // fields give (docs/realism.md, v18).
     const double underChin = smoothstep(f.phiGn - kUnderChinFrom, f.phiGn - kUnderChinFrom - kUnderChinOver, phi0);
-    r += (fields - meanFields) * (1 - std::max({ lips, 0.85 * nose, eyes }))
-        + meanFields * (1 - std::max({ lipsMean, nose, eyes })) * (1 - underChin);
+    r += fields * (1 - std::max({ lips, 0.85 * nose, eyes })) + meanFields * (1 - std::max({ lipsMean, nose, eyes })) * (1 - underChin);
     return r;
 }
 
@@ -605,14 +605,17 @@ Vertices synthesizeFace(const FaceTopology& t, const FaceParams& params, const F
         return turned + pivot + Eigen::Vector3d(0, 0, 0.35 * angle * 40);
     };
 
-    for (size_t i = 0; i < t.skin.size(); ++i) {
+    // Skin vertex i in actions a; the jaw turns by the pose's angle, so only for the pose itself.
+    auto skinPoint = [&](size_t i, const FaceActions& a, bool turnJaw) -> Eigen::Vector3d {
         const SkinVertex& sv = t.skin[i];
         const auto [theta0, phi0] = chart(sv.row, sv.col);
-        const ChartPoint cp = warp(f, theta0, phi0, sv.slit, sv.row == K[3], act);
-        const double r = skinRadius(f, cp.theta, cp.phi, theta0, phi0, sv.slit, act, sv.slit != 0 && sv.row == K[3]);
-        const Eigen::Vector3d x = jawMove(r * direction(cp.theta, cp.phi), cp.jaw) + vestibule(f, theta0, phi0);
-        V.row(static_cast<Eigen::Index>(i)) = x.transpose();
-    }
+        const ChartPoint cp = warp(f, theta0, phi0, sv.slit, sv.row == K[3], a);
+        const double r = skinRadius(f, cp.theta, cp.phi, theta0, phi0, sv.slit, a, sv.slit != 0 && sv.row == K[3]);
+        const Eigen::Vector3d x = r * direction(cp.theta, cp.phi);
+        return (turnJaw ? jawMove(x, cp.jaw) : x) + vestibule(f, theta0, phi0);
+    };
+    for (size_t i = 0; i < t.skin.size(); ++i)
+        V.row(static_cast<Eigen::Index>(i)) = skinPoint(i, act, true).transpose();
 
     // Eyeballs: UV ellipsoids in each eye's frame, poles along its up axis.
     const Component* eyes[2] = { t.labels.component("eye_right"), t.labels.component("eye_left") };
@@ -704,6 +707,19 @@ Vertices synthesizeFace(const FaceTopology& t, const FaceParams& params, const F
         for (int j = 0; j < t.tongueSegments; ++j)
             putTongue(M_PI * i / (t.tongueRings + 1), 2 * M_PI * j / t.tongueSegments);
     putTongue(M_PI, 0);
+    // The face's place in the frame (kLandmarkCentre, kDriftKept), from its neutral landmarks
+    // whatever the pose, so a pose moves its skin against the face's neutral, not its own
+    // landmarks.
+    const FaceActions rest {};
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (const auto& [name, v] : t.labels.landmarks) {
+        if (v < 0 || static_cast<size_t>(v) >= t.skin.size())
+            fail("synthesizeFace: landmark ", name, " (vertex ", v, ") is not a skin vertex");
+        centroid += skinPoint(static_cast<size_t>(v), rest, false);
+    }
+    centroid /= static_cast<double>(t.labels.landmarks.size());
+    const Eigen::Vector3d drift = centroid - Eigen::Vector3d(kLandmarkCentre[0], kLandmarkCentre[1], kLandmarkCentre[2]);
+    V.rowwise() -= drift.cwiseProduct(Eigen::Vector3d(1 - kDriftKept[0], 1 - kDriftKept[1], 1 - kDriftKept[2])).transpose();
     return V;
 }
 

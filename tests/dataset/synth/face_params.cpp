@@ -56,30 +56,34 @@ TEST_CASE("face_params: sampled Farkas measures keep the norms' means and SDs")
 
 TEST_CASE("face_params: shape fields are mirror-symmetric or antisymmetric and the fast sum equals the fields' sum")
 {
-    for (int k = 0; k < kShapeFields; ++k) {
-        INFO("field " << k);
-        const double sign = k < 28 ? 1.0 : -1.0;
-        for (double theta : { 0.0, 0.13, 0.3, 0.71 })
-            for (double phi : { 0.5, 0.02, -0.4, -0.93 })
-                REQUIRE(shapeField(k, -theta, phi) == Approx(sign * shapeField(k, theta, phi)).margin(1e-15));
-    }
+    for (double width : { kMeanFieldWidth, kFieldWidth })
+        for (int k = 0; k < kShapeFields; ++k) {
+            INFO("field " << k << ", width " << width);
+            const double sign = k < 28 ? 1.0 : -1.0;
+            for (double theta : { 0.0, 0.13, 0.3, 0.71 })
+                for (double phi : { 0.5, 0.02, -0.4, -0.93 })
+                    REQUIRE(shapeField(k, -theta, phi, width) == Approx(sign * shapeField(k, theta, phi, width)).margin(1e-15));
+        }
     // Each bump peaks at 1 at its centre: field 0 at (0, 0.55), field 28 (antisymmetric, row 0,
-    // column 1) at +-0.3.
-    REQUIRE(shapeField(0, 0, 0.55) == Approx(1.0).epsilon(1e-12));
-    REQUIRE(shapeField(28, 0.3, 0.55) == Approx(1 - std::exp(-0.36 / 0.04)).epsilon(1e-12));
+    // column 1) at +-0.3, less its mirror image's tail.
+    REQUIRE(shapeField(0, 0, 0.55, 0.2) == Approx(1.0).epsilon(1e-12));
+    REQUIRE(shapeField(28, 0.3, 0.55, 0.2) == Approx(1 - std::exp(-0.36 / 0.04)).epsilon(1e-12));
+    REQUIRE(shapeField(28, 0.3, 0.55, 0.28) == Approx(1 - std::exp(-0.36 / 0.0784)).epsilon(1e-12));
 
+    // The fast sums: a face's own coefficients on the wider bumps, the population's means on
+    // the narrower ones.
     const FaceParams p = sampleFaceParams(1, 5);
     REQUIRE(p.shapeModes.size() == static_cast<size_t>(kShapeFields));
     for (double theta : { -0.8, -0.2, 0.0, 0.45 })
         for (double phi : { 0.6, 0.1, -0.55, -1.0 }) {
             double sum = 0;
             for (int k = 0; k < kShapeFields; ++k)
-                sum += p.shapeModes[static_cast<size_t>(k)] * shapeField(k, theta, phi);
+                sum += p.shapeModes[static_cast<size_t>(k)] * shapeField(k, theta, phi, kFieldWidth);
             double meanSum = 0;
             for (int k = 0; k < kShapeFields; ++k)
-                meanSum += shapeFieldMeans()[static_cast<size_t>(k)] * shapeField(k, theta, phi);
-            const auto [both, means] = shapeFieldSums(p.shapeModes, shapeFieldMeans(), theta, phi);
-            REQUIRE(both == Approx(sum).margin(1e-12));
+                meanSum += shapeFieldMeans()[static_cast<size_t>(k)] * shapeField(k, theta, phi, kMeanFieldWidth);
+            const auto [own, means] = shapeFieldSums(p.shapeModes, shapeFieldMeans(), theta, phi);
+            REQUIRE(own == Approx(sum).margin(1e-12));
             REQUIRE(means == Approx(meanSum).margin(1e-12));
         }
     // The population means: the 28 symmetric fields' are fitted (some non-zero), the 21

@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "dataset/mesh_quality.h"
 #include "dataset/synth/face_generator.h"
+#include "dataset/synth/pose_recipes.h"
 #include "face_checks.h"
 #include "test_common.h"
 
@@ -236,4 +237,43 @@ TEST_CASE("face_shape: sampled faces are distinct")
         }
     std::cout << "face_shape: smallest pairwise RMS distance of 250 faces: " << smallest << " mm (faces " << a << ", " << b << ")\n";
     REQUIRE(smallest > 1.0);
+}
+
+TEST_CASE("face_shape: each face is placed by its neutral landmarks, and its poses by the same move")
+{
+    // v19: a face keeps kDriftKept of its landmarks' offset from kLandmarkCentre, so faces drift
+    // in the frame with their length and depth as ICT-FaceKit's do (SD 1.1 and 1.2 mm), not as
+    // the head-centred frame made them (2.3 and 3.5 mm); a pose keeps its neutral's move, so
+    // whatever a pose leaves still (the eyeballs) stays exactly where the neutral has it.
+    const FaceTopology t = buildFaceTopology(Resolution::Low);
+    const Component* eye = t.labels.component("eye_left");
+    REQUIRE(eye != nullptr);
+    const int n = 250;
+    Eigen::MatrixXd centroids(n, 3);
+    for (int i = 0; i < n; ++i) {
+        INFO("face " << i);
+        const FaceParams p = sampleFaceParams(4, i);
+        const Vertices V = synthesizeFace(t, p);
+        Eigen::RowVector3d c = Eigen::RowVector3d::Zero();
+        for (const auto& [name, v] : t.labels.landmarks)
+            c += V.row(v);
+        centroids.row(i) = c / static_cast<double>(t.labels.landmarks.size());
+        if (i < 10)
+            for (const PoseRecipe& r : poseRecipes()) {
+                INFO("pose " << r.name);
+                const Vertices P = synthesizeFace(t, p, r.actions);
+                const auto eyeball = [&](const Vertices& X) { return X.middleRows(eye->begin, eye->end - eye->begin); };
+                REQUIRE((eyeball(P) - eyeball(V)).cwiseAbs().maxCoeff() == 0.0);
+            }
+    }
+    const Eigen::RowVector3d mean = centroids.colwise().mean();
+    const Eigen::RowVector3d sd = ((centroids.rowwise() - mean).colwise().squaredNorm() / (n - 1)).cwiseSqrt();
+    INFO("landmark centroid mean " << mean << ", SD " << sd);
+    for (int a = 0; a < 3; ++a)
+        REQUIRE(std::abs(mean(a) - kLandmarkCentre[a]) < 0.3);
+    // v18's drift was 2.3 mm (y) and 3.5 mm (z), ICT-FaceKit's 1.1 and 1.2.
+    REQUIRE(sd(1) > 0.9);
+    REQUIRE(sd(1) < 1.4);
+    REQUIRE(sd(2) > 0.9);
+    REQUIRE(sd(2) < 1.5);
 }
