@@ -49,8 +49,8 @@
 // over faces of the centroid of each face's shared central landmarks (those the alignment
 // uses). The spectrum takes coordinates as stored, so this drift is variance to it, and in its
 // first mode: a set whose faces drift more than real ones spends modes on where they sit
-// rather than on their shape (docs/realism.md, "v19": the generator's faces drifted 2.3 mm up
-// and down and 3.5 mm in depth until v18, ICT-FaceKit's 1.1 and 1.2 mm).
+// rather than on their shape (docs/realism.md, "v19": the generator's faces drifted 2.4 mm up
+// and down and 3.7 mm in depth until v18, ICT-FaceKit's 1.2 and 1.4 mm).
 //
 // Asymmetry. The share of a set's shape variation that is antisymmetric, over its central
 // region: each face's offset from the set's mean, d_v = x_v - mean_v, splits into a symmetric

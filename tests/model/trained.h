@@ -20,8 +20,9 @@ struct TrainedSynth {
 /// Options small enough for a debug sanitizer build, large enough to model the faces. The
 /// clean-up and correlation dimensions are the product's (60, 80): until v19 they were 15 and 12,
 /// which held the face model's bar (one region gives under half the mean face's error) only
-/// while the generator's faces drifted in their frame (docs/realism.md, "v19"): on v19's
-/// fixture they give 0.59 from the mouth and chin, the product's dimensions 0.40 (0.43 on v18's).
+/// while the generator's faces drifted in their frame (docs/realism.md, "v19"): from the mouth
+/// and chin they gave 0.43 of the mean face's error on v18's fixture and 0.59 on v19's, where
+/// the product's dimensions give 0.40.
 inline model::HeadModelOptions smallHeadOptions()
 {
     model::HeadModelOptions o;

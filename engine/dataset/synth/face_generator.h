@@ -109,7 +109,7 @@ struct FaceTopology {
 FaceTopology buildFaceTopology(Resolution resolution);
 
 /// Where a face sits in the dataset's frame (v19). The frame is the head's centre C (above), so
-/// a longer or deeper face reaches further from it: the centroid of a face's landmarks moved
+/// a longer or deeper face reaches further from it: the centroid of a face's 34 landmarks moved
 /// 2.3 mm up and down and 3.5 mm in depth from face to face (SD), where ICT-FaceKit's move 1.1
 /// and 1.2 mm. That drift held half of the set's variance in its first mode, so the spectrum's
 /// 15 / 35 modes (issue 16) were reached only with lumpier shape fields. Now each face is moved
