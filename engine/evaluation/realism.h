@@ -38,12 +38,13 @@
 // beside the figures above, not a replacement for them (docs/realism.md).
 //
 // Spectrum. The number of principal components that hold 90, 95 and 99% of a set's shape
-// variance, from the singular values of the centred data matrix (samples by 3#V; never the
-// 3#V by 3#V covariance). Coordinates are as stored (no per-face alignment: the face model,
-// stats/face_model.h, learns them so). Two versions: `skin` over every skin vertex unweighted
-// (what the face model sees) and `central` over the central region's vertices, each weighted
-// by the square root of its area so the inner product of two faces approximates the surface
-// integral and the count does not depend on the mesh's resolution.
+// variance, from the singular values of the centred data matrix (samples by 3#V), computed as
+// the eigenvalues of its samples-by-samples Gram matrix (never the 3#V by 3#V covariance).
+// Coordinates are as stored (no per-face alignment: the face model, stats/face_model.h, learns
+// them so). Two versions: `skin` over every skin vertex unweighted (what the face model sees)
+// and `central` over the central region's vertices, each weighted by the square root of its
+// area so the inner product of two faces approximates the surface integral and the count does
+// not depend on the mesh's resolution.
 //
 // Placement. How far a set's faces move in their own frame: per axis, the standard deviation
 // over faces of the centroid of each face's shared central landmarks (those the alignment
