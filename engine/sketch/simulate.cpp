@@ -216,7 +216,9 @@ Simulation simulateStrokes(const Mesh& face, const Mesh& meanFace, const std::ma
 
     Simulation sim;
     sim.traced.F = face.F;
-    sim.traced.V = meanFace.V + o.extreme * (face.V - meanFace.V);
+    // Without exaggeration the traced face is the face itself, bit for bit: mean + (face - mean)
+    // rounds wherever a coordinate and the mean's differ in sign or by more than a factor of two.
+    sim.traced.V = o.extreme == 1 ? face.V : Vertices(meanFace.V + o.extreme * (face.V - meanFace.V));
     const OrbitView view = frameMeshView(meanFace, o.angles, o.imageSize, o.imageSize);
     const Camera camera = orbitCamera(view);
     const Curvature curvature = estimateCurvature(sim.traced);

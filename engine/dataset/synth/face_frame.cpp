@@ -116,12 +116,14 @@ Frame makeFrame(const FaceParams& p)
     f.p = p;
     f.zf = p.faceDepth;
     f.yN = 0.5 * p.browHeight;
-    f.zSn = f.zf + 1.0;
+    // sn stands kSubnasalRidge in front of where v19 put it, on the subnasal ridge (face_frame.h).
+    f.zSn = f.zf + 1.0 + kSubnasalRidge;
     f.ySn = f.yN - std::sqrt(sq(p.nsn) - sq(f.zSn - f.zf));
     f.yPrn = f.ySn + p.tipRise;
     f.zPrn = f.zSn + p.tipProtrusion;
-    f.ySto = f.ySn - p.snsto;
     f.zSto = f.zf - 0.5 + 0.5 * p.lipProtrusion;
+    // sn-sto is Farkas' upper lip height, a straight distance: sn now stands well in front of sto.
+    f.ySto = f.ySn - std::sqrt(sq(p.snsto) - sq(f.zSn - f.zSto));
     f.zGn = f.zf + p.chinProjection - 14;
     f.yGn = f.yN - std::sqrt(sq(p.ngn) - sq(f.zf - f.zGn));
     f.yPg = f.yGn + std::min(11.0, 0.35 * (f.ySto - f.yGn));

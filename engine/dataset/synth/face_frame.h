@@ -29,6 +29,20 @@ constexpr double kNostrilHalfHeight = 0.35;
 constexpr double kNostrilHalfWidth = 1.2;
 constexpr double kNostrilHalfWidthOfAl = 0.30;
 
+// The subnasal ridge (v20): the columella's base and the top of the philtrum stand forward of
+// the skin lip on either side, a ridge kSubnasalRidge mm high on the midline, falling to nothing
+// kSubnasalRidgeHalfWidth mm to each side (a Gaussian's scale), kSubnasalRidgeAbove mm above sn
+// and kSubnasalRidgeSpread mm tall (face_shape.cpp soft()). ICT-FaceKit's mean face is such a
+// ridge: at sn's height its surface falls 6 mm from the midline to 12 mm out, where v19's fell
+// 0.6, so v19's midline under the nose lay 5 mm behind ICT's while 12 mm out the two agreed.
+// makeFrame puts sn kSubnasalRidge further forward, so the profile's knot at sn, which the frame
+// solves until the finished skin passes through sn, stays where it was: the ridge moves the
+// midline, not the face beside it.
+constexpr double kSubnasalRidge = 5.0;
+constexpr double kSubnasalRidgeHalfWidth = 8.0;
+constexpr double kSubnasalRidgeAbove = 2.0;
+constexpr double kSubnasalRidgeSpread = 4.0;
+
 inline double smoothstep(double e0, double e1, double x)
 {
     const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);

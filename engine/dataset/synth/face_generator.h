@@ -113,10 +113,11 @@ FaceTopology buildFaceTopology(Resolution resolution);
 /// 2.3 mm up and down and 3.5 mm in depth from face to face (SD), where ICT-FaceKit's move 1.1
 /// and 1.2 mm. That drift held half of the set's variance in its first mode, so the spectrum's
 /// 15 / 35 modes (issue 16) were reached only with lumpier shape fields. Now each face is moved
-/// towards kLandmarkCentre (mm; the mean of that centroid over seed 1's 250 high faces of v18)
+/// towards kLandmarkCentre (mm; the mean of that centroid over seed 1's 250 high faces before the
+/// move, v20; until v19 v18's, 1.0 mm further back and 0.15 lower, before sn moved 5 mm forward)
 /// and keeps kDriftKept of its offset from it along x, y and z: 1.1 and 1.2 mm SD, as in
 /// ICT-FaceKit (docs/realism.md, "v19"). Each pose moves by its neutral face's move.
-inline constexpr double kLandmarkCentre[3] = { 0.0, -19.2, 75.2 };
+inline constexpr double kLandmarkCentre[3] = { 0.0, -19.05, 76.24 };
 inline constexpr double kDriftKept[3] = { 1.0, 0.5, 0.35 };
 
 /// The vertices of one face in one pose: #V by 3, mm, in the topology's vertex order, placed by

@@ -87,23 +87,46 @@ constexpr double kVestibuleDepth = 14.0; // mm
 // seen from inside the nose, faces the head's centre on nearly every face (the tests exempt the
 // nose's underside for this).
 constexpr double kVestibuleBack = 1.4;
-constexpr double kVestibuleWall = 1.0;  // mm
+constexpr double kVestibuleWall = 1.0; // mm
+// The pocket is kVestibuleDepth deep over the inner kVestibuleFloor of the footprint's radius and
+// rises to the rim over the rest. Until v19 it rose over all of it (0), a funnel whose rim no
+// render showed: from below the nostrils were dark smudges. At 0.3 (v20) the opening has a wall
+// under its rim, reads as an oval from below, and holds more of the room ICT-FaceKit's nostrils
+// have (the nose's mean-face distance to ICT's 0.13 mm RMS nearer; 0.45 left the rim ragged on
+// the high grid, whose rows lie about 2.5 mm apart there).
+constexpr double kVestibuleFloor = 0.3;
 constexpr double kColumellaHalf = 1.5;  // mm
 constexpr double kColumellaBlend = 2.0; // mm
 
-// The alar lobule: an elliptic bump on each side of the lower nose, its centre kAlaAt of the way
-// from sn up to prn, its half-height kAlaAbove alar radii above the centre and kAlaBelow below,
-// kAlaHeight times (0.34 tip heights + 2 mm) high. Until v7 it sat at 0.55 with 0.85 both ways,
-// full height, and on the downward-facing underside the radial bump grew down and forward into a
-// tab that hung 2 mm below sn in front of the nostril, so from the front each nostril showed as a
-// dark notch between the columella and a tab. v8 and v9 lifted it (0.8 / 0.4, then 0.9 / 0.3); a
-// bump that tall falling over so short a half-axis left a knob at each alar base, seen from the
-// front and the three-quarter view. v10: 0.6 below and 0.6 of the height, a rounder lobe; the
-// mean-face distance to ICT moves by 0.01 mm (docs/realism.md, "Now (3 December, late)").
-constexpr double kAlaAt = 0.9;
-constexpr double kAlaAbove = 0.85;
-constexpr double kAlaBelow = 0.6;
-constexpr double kAlaHeight = 0.6;
+// The alar lobule: an elliptic bump on each side of the lower nose, its centre kAlaIn alar radii
+// inside al and kAlaAt of the way from sn up to prn, its half-height kAlaAbove alar radii above the
+// centre and kAlaBelow below, kAlaHeight times (0.34 tip heights + 2 mm) high, rounded as
+// (1 - d)^kAlaRound. Until v7 it sat at 0.55 with 0.85 both ways, full height, and on the
+// downward-facing underside the radial bump grew down and forward into a tab that hung 2 mm below
+// sn in front of the nostril, so from the front each nostril showed as a dark notch between the
+// columella and a tab. v8 and v9 lifted it (0.8 / 0.4, then 0.9 / 0.3); v10 made it 0.6 below and
+// 0.6 of the height. Until v19 its centre lay a whole radius inside al, where the lobule's body
+// (bone(): the lower nose's wide cross-section) stood higher than it, so the smooth maximum of the
+// two left no ala to see: a section 16 mm from the midline, where ICT-FaceKit's mean face has a
+// bulge 11 mm proud of the alar base, was flat. v20 (docs/realism.md, "v20"): the centre moves out
+// to 0.7 radii inside al and up, beyond prn's height, because a radial bump on the underside,
+// 45 mm below the head's centre, grows forward and down; taller (1.1 / 1.3 radii), higher and
+// rounder, 16 mm out it peaks 10-12 mm above sn as ICT's bulge does, 1 mm behind it.
+constexpr double kAlaIn = 0.7;
+constexpr double kAlaAt = 1.35;
+constexpr double kAlaAbove = 1.1;
+constexpr double kAlaBelow = 1.3;
+constexpr double kAlaHeight = 1.15;
+constexpr double kAlaRound = 0.8;
+// The lower nose's midline rises from sn to prn as 1 - u^kColumellaCurve (u: 1 at sn, 0 at prn).
+// At 1.8 (until v19) the columella left sn nearly level, rising 10 degrees, a nasolabial angle
+// near 90 degrees; at 1.2, with the subnasal ridge (face_frame.h) under it, the mean face's
+// rises about 22 degrees, ICT-FaceKit's about 20.
+constexpr double kColumellaCurve = 1.2;
+// Where the nasolabial fold starts (nasolabialCurve): 2 mm above kFoldAt of the way from sn up to
+// prn, the alar lobule's centre until v19. v20 moved that centre up (kAlaAt) but not the lobe
+// one sees, which a radial bump on the underside draws lower; the fold stays.
+constexpr double kFoldAt = 0.9;
 
 // Radial height of nose, brows, sockets, cheekbones and chin: the parts that do not slide.
 double bone(const Frame& f, double theta, double phi, double X, double Y, const FaceActions& act)
@@ -119,7 +142,7 @@ double bone(const Frame& f, double theta, double phi, double X, double Y, const 
         double height, halfWidth;
         if (phi <= f.phiPrn) {
             const double u = 1 - (phi - f.phiSn) / (f.phiPrn - f.phiSn);
-            height = f.noseTip * (1 - std::pow(u, 1.8));
+            height = f.noseTip * (1 - std::pow(u, kColumellaCurve));
             halfWidth = p.tipWidth;
         } else {
             const double t = (phi - f.phiPrn) / (f.phiN - f.phiPrn);
@@ -140,10 +163,10 @@ double bone(const Frame& f, double theta, double phi, double X, double Y, const 
         body = height * (cross + 0.12 * std::exp(-sq(X / (2.4 * halfWidth))));
     }
     const double ra = p.alaSize * (1 + 0.04 * act.noseWrinkle);
-    const double alaX = p.alal / 2 - ra;
+    const double alaX = p.alal / 2 - kAlaIn * ra;
     const double alaY = lerp(f.ySn, f.yPrn, kAlaAt) + 0.6 * act.noseWrinkle;
     const double da = sq((ax - alaX) / ra) + sq((Y - alaY) / ((Y < alaY ? kAlaBelow : kAlaAbove) * ra));
-    const double ala = da < 1 ? kAlaHeight * (0.34 * f.noseTip + 2.0) * std::pow(1 - da, 1.1) : 0;
+    const double ala = da < 1 ? kAlaHeight * (0.34 * f.noseTip + 2.0) * std::pow(1 - da, kAlaRound) : 0;
     r += smax(body, ala, 6.0);
     const double phiNostril = lerp(f.phiSn, f.phiPrn, kNostrilAt);
     const double dn = sq((ax - 0.45 * p.alal / 2) / (kNostrilDimpleX * p.nostrilSize))
@@ -227,7 +250,7 @@ double lipProfile(const LipShape& lip, double t, double h, double w, double verm
 }
 
 // The nasolabial fold (v17): a crease from just above and outside the ala's widest point (1.5
-// mm out, 2 mm above the alar lobule's centre) down and out to 8 mm beside and 6 mm below the
+// mm out, 2 mm above kFoldAt of the way from sn to prn) down and out to 8 mm beside and 6 mm below the
 // mouth's corner, bowed kNasolabialBow mm outwards (a quadratic Bezier), with the cheek swelling
 // beside it on the outside. Across it, at signed distance d mm
 // (positive towards the cheek): depth (kNasolabialBulge e^-((d - 6)/6)^2 - e^-(d/3.5)^2), faded
@@ -274,7 +297,7 @@ NasolabialCurve detail::nasolabialCurve(const Frame& f)
 {
     const FaceParams& p = f.p;
     NasolabialCurve c;
-    const Eigen::Vector2d a(p.alal / 2 + 1.5, lerp(f.ySn, f.yPrn, kAlaAt) + 2), b(p.chch / 2 + 8, f.ySto - 6);
+    const Eigen::Vector2d a(p.alal / 2 + 1.5, lerp(f.ySn, f.yPrn, kFoldAt) + 2), b(p.chch / 2 + 8, f.ySto - 6);
     c.along = (b - a).normalized();
     c.chord = (b - a).norm();
     const Eigen::Vector2d out(-c.along.y(), c.along.x());
@@ -337,6 +360,8 @@ double soft(const Frame& f, double theta0, double phi0, double X, double Y, int 
     r += p.philtrumDepth * window * (0.35 * std::exp(-sq((ax - 5) / 1.8)) - std::exp(-sq(X / 2.6)));
 
     r += nasolabialFold(f, ax, Y);
+    // The subnasal ridge (face_frame.h), on the skin so that it moves with the upper lip.
+    r += kSubnasalRidge * std::exp(-sq(X / kSubnasalRidgeHalfWidth) - sq((b - snB - kSubnasalRidgeAbove) / kSubnasalRidgeSpread));
 
     // Cheeks, eyebrows, nose wrinkles.
     r += p.cheekFullness * std::exp(-sq((ax - (half + 17)) / 15) - sq((b - 12) / 16));
@@ -501,8 +526,9 @@ Eigen::Vector3d vestibule(const Frame& f, double theta0, double phi0)
     const double ex = (ax - kNostrilOut * p.alal / 2) / (kNostrilHalfWidth * p.nostrilSize);
     const double ep = (phi0 - lerp(f.phiSn, f.phiPrn, kNostrilAt)) / (kNostrilHalfHeight * (f.phiPrn - f.phiSn));
     const double rho = std::hypot(ex, ep);
-    const double wanted
-        = rho >= 1 ? 0.0 : kVestibuleDepth * (1 - smoothstep(0, 1, rho)) * smoothstep(kColumellaHalf, kColumellaHalf + kColumellaBlend, ax);
+    const double wanted = rho >= 1
+        ? 0.0
+        : kVestibuleDepth * (1 - smoothstep(kVestibuleFloor, 1, rho)) * smoothstep(kColumellaHalf, kColumellaHalf + kColumellaBlend, ax);
     if (wanted <= 0) // outside the footprint, or on the columella
         return Eigen::Vector3d::Zero();
     const Eigen::Vector3d x0 = neutralRadius(f, theta0, phi0) * direction(theta0, phi0);
