@@ -116,8 +116,10 @@ Frame makeFrame(const FaceParams& p)
     f.p = p;
     f.zf = p.faceDepth;
     f.yN = 0.5 * p.browHeight;
-    // sn stands kSubnasalRidge in front of where v19 put it, on the subnasal ridge (face_frame.h).
-    f.zSn = f.zf + 1.0 + kSubnasalRidge;
+    // sn stands on the subnasal ridge (face_frame.h), as far in front of where v19 put it as the
+    // ridge is high there; the profile's knot at sn stays where v19 put it (below).
+    const double zSnBase = f.zf + 1.0;
+    f.zSn = zSnBase + kSubnasalRidge * std::exp(-sq(kSubnasalRidgeAbove / kSubnasalRidgeSpread));
     f.ySn = f.yN - std::sqrt(sq(p.nsn) - sq(f.zSn - f.zf));
     f.yPrn = f.ySn + p.tipRise;
     f.zPrn = f.zSn + p.tipProtrusion;
@@ -142,7 +144,10 @@ Frame makeFrame(const FaceParams& p)
         { f.yN + 11, f.zf + p.nasionDepth },
         { f.yN, f.zf },
         { lerp(f.yN, f.ySn, 0.5), f.zf - 1.5 },
-        { f.ySn, f.zSn },
+        // At v19's depth: the knot's elevation, atan2(y, z), then stays too. With the knot at sn's
+        // target in front of it, the profile's elevations moved 1.2 degrees (2 mm) and with them
+        // every lip row (ls 2.4 mm up).
+        { f.ySn, zSnBase },
         { f.ySto, f.zSto },
         { f.yPg, f.zPg - p.chinHeight },
         { f.yGn, f.zGn },

@@ -153,8 +153,8 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
     // the nostril vestibules (3 December, night), with the tip's and the lips' means held (moved,
     // the lips broke the HMM's reading of the upper lip). The Farkas draws above are
     // anthropometric norms and were left alone.
-    // v20: 5 mm less, as sn moved forward by kSubnasalRidge (face_frame.h) and prn stayed.
-    p.tipProtrusion = n(17.5 - 1.5 * s, 1.8); // ICT: 20.5 before, then 22.5 until v19
+    // v20: 3.9 mm less, as sn moved forward onto the subnasal ridge (face_frame.h) and prn stayed.
+    p.tipProtrusion = n(18.6 - 1.5 * s, 1.8); // ICT: 20.5 before, then 22.5 until v19
     p.tipRise = n(8.5 - 1.5 * aging, 1.2);    // ICT: 4.5 before (prn was 7 mm too near sn)
     p.dorsumHump = n(0.5 - 0.5 * s, 0.9);     // ICT: 0.6, then 0.8, then 0.6 before
     p.bridgeWidth = n(7.4 - 0.5 * s, 0.6);    // ICT: 6.5, then 7.2, then 7.3 before
