@@ -233,6 +233,15 @@ void Observations::addTransposed(const Eigen::VectorXd& v, Eigen::VectorXd& a) c
     }
 }
 
+void Observations::pinMeasured(Eigen::VectorXd& a) const
+{
+    for (const Block& b : blocks_)
+        if (b.identity || (b.width == 1 && b.rows == 1 && b.P(0, 0) == 1.0))
+            for (int i = 0; i < b.rows; ++i)
+                if (b.noise(i) == 0.0)
+                    a(b.first + i) = b.y(i);
+}
+
 ComponentPosterior condition(const Ppca& model, const Observations& observations)
 {
     observations.validate(model.dim());
@@ -283,6 +292,7 @@ Eigen::VectorXd conditionalMean(const Ppca& model, const Observations& observati
     if (observations.noisy())
         unexplained.array() *= model.sigma2 / (observations.noiseVariances().array() + model.sigma2);
     observations.addTransposed(unexplained, t);
+    observations.pinMeasured(t);
     return t;
 }
 

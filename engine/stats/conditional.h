@@ -101,6 +101,10 @@ public:
     Eigen::MatrixXd apply(const Eigen::MatrixXd& A) const;
     /// Adds P^T b (b has o values) to the d vector a.
     void addTransposed(const Eigen::VectorXd& b, Eigen::VectorXd& a) const;
+    /// Sets each coordinate of a that a noise-free measurement gives whole (addVertex,
+    /// addCoordinate) to that measurement. a + (y - a) can miss y by a rounding (where a and y
+    /// differ in sign or by more than a factor of two), and a measured coordinate is known.
+    void pinMeasured(Eigen::VectorXd& a) const;
 
 private:
     struct Block {

@@ -113,6 +113,32 @@ TEST_CASE("conditional: the missing block follows thesis eq. 4.21 in precision f
     CHECK(relativeDifference(Eigen::VectorXd(mean(o)), Eigen::VectorXd(t(o))) < 1e-14);
 }
 
+TEST_CASE("conditional: a noise-free whole measurement comes back bit for bit, a noisy one is pulled")
+{
+    // Measurements far from the model's mean and of the other sign: a + (y - a) rounds there
+    // (the pose completion test "a pose completed from all its FPs is itself" met one such
+    // coordinate on the v20 faces).
+    Random random(41);
+    const Eigen::Index d = 30;
+    const Ppca model = randomPpca(random, d, 4, 2.0, 1.0, 0.4);
+    Observations obs;
+    Eigen::VectorXd y(7);
+    for (Eigen::Index v = 0; v < 2; ++v) {
+        const Eigen::Vector3d p = -model.mean.segment<3>(3 * v) * 3.7 + Eigen::Vector3d(1e-7, -0.1 / 3, 1.0 / 3);
+        obs.addVertex(v, p);
+        y.segment<3>(3 * v) = p;
+    }
+    y(6) = -std::abs(model.mean(20)) * 5.3 - 0.1 / 7;
+    obs.addCoordinate(20, y(6));
+    obs.addVertex(5, Eigen::Vector3d(0.3, -0.7, 1.1), 0.5);
+    const Eigen::VectorXd t = conditionalMean(model, obs, condition(model, obs));
+    for (Eigen::Index i = 0; i < 6; ++i)
+        CHECK(t(i) == y(i));
+    CHECK(t(20) == y(6));
+    // The noisy vertex is pulled towards its measurement, not pinned to it.
+    CHECK((t.segment<3>(15) - Eigen::Vector3d(0.3, -0.7, 1.1)).norm() > 1e-6);
+}
+
 TEST_CASE("conditional: a vertex seen in 2D keeps its image and gets its depth from the model")
 {
     Random random(33);
