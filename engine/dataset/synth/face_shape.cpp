@@ -90,11 +90,12 @@ constexpr double kVestibuleBack = 1.4;
 constexpr double kVestibuleWall = 1.0; // mm
 // The pocket is kVestibuleDepth deep over the inner kVestibuleFloor of the footprint's radius and
 // rises to the rim over the rest. Until v19 it rose over all of it (0), a funnel whose rim no
-// render showed: from below the nostrils were dark smudges. At 0.3 (v20) the opening has a wall
+// render showed: from below the nostrils were dark smudges. At 0.2 (v20) the opening has a wall
 // under its rim, reads as an oval from below, and holds more of the room ICT-FaceKit's nostrils
-// have (the nose's mean-face distance to ICT's 0.13 mm RMS nearer; 0.45 left the rim ragged on
-// the high grid, whose rows lie about 2.5 mm apart there).
-constexpr double kVestibuleFloor = 0.3;
+// have (the nose's mean-face distance to ICT's about 0.1 mm RMS nearer). At 0.3 the wall folded
+// beside the alar crease on one face in 250 of seed 7 (none at 0.2 on seeds 1, 3, 5, 7); at 0.45
+// the rim was ragged on the high grid, whose rows lie about 2.5 mm apart there.
+constexpr double kVestibuleFloor = 0.2;
 constexpr double kColumellaHalf = 1.5;  // mm
 constexpr double kColumellaBlend = 2.0; // mm
 
