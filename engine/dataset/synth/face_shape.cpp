@@ -90,12 +90,12 @@ constexpr double kVestibuleBack = 1.4;
 constexpr double kVestibuleWall = 1.0; // mm
 // The pocket is kVestibuleDepth deep over the inner kVestibuleFloor of the footprint's radius and
 // rises to the rim over the rest. Until v19 it rose over all of it (0), a funnel whose rim no
-// render showed: from below the nostrils were dark smudges. At 0.2 (v20) the opening has a wall
+// render showed: from below the nostrils were dark smudges. At 0.3 (v20) the opening has a wall
 // under its rim, reads as an oval from below, and holds more of the room ICT-FaceKit's nostrils
-// have (the nose's mean-face distance to ICT's about 0.1 mm RMS nearer). At 0.3 the wall folded
-// beside the alar crease on one face in 250 of seed 7 (none at 0.2 on seeds 1, 3, 5, 7); at 0.45
-// the rim was ragged on the high grid, whose rows lie about 2.5 mm apart there.
-constexpr double kVestibuleFloor = 0.2;
+// have (the nose's mean-face distance to ICT's 0.1 mm RMS nearer; no fold on seeds 1, 3, 5 and
+// 7, 250 high faces each). At 0.45 the rim was ragged on the high grid, whose rows lie about
+// 2.5 mm apart there.
+constexpr double kVestibuleFloor = 0.3;
 constexpr double kColumellaHalf = 1.5;  // mm
 constexpr double kColumellaBlend = 2.0; // mm
 
@@ -119,16 +119,6 @@ constexpr double kAlaAbove = 1.1;
 constexpr double kAlaBelow = 1.3;
 constexpr double kAlaHeight = 1.15;
 constexpr double kAlaRound = 0.8;
-// The alar crease (v20): a groove kAlarCrease mm deep and kAlarCreaseWidth alar radii wide (a
-// Gaussian's scale) on the lobule's rim, along its outer side only, from kAlarCreaseFrom to
-// kAlarCreaseTo half turns round the lobule's centre (0 points out, 0.5 up), fading in and out
-// over 0.15 more. Beside the ala the cheek stood 3 mm in front of ICT-FaceKit's (19 mm from the
-// midline, 4-12 mm above sn); with the crease 1-2 mm. A crease all the way round the lobule (a
-// trial) drew dark rings round the alae in the previews.
-constexpr double kAlarCrease = 2.5;
-constexpr double kAlarCreaseWidth = 0.25;
-constexpr double kAlarCreaseFrom = -0.35;
-constexpr double kAlarCreaseTo = 0.3;
 // The lower nose's midline rises from sn to prn as 1 - u^kColumellaCurve (u: 1 at sn, 0 at prn).
 // At 1.8 (until v19) the columella left sn nearly level, rising 10 degrees, a nasolabial angle
 // near 90 degrees; at 1.2, with the subnasal ridge (face_frame.h) under it, the mean face's
@@ -179,13 +169,6 @@ double bone(const Frame& f, double theta, double phi, double X, double Y, const 
     const double da = sq((ax - alaX) / ra) + sq((Y - alaY) / ((Y < alaY ? kAlaBelow : kAlaAbove) * ra));
     const double ala = da < 1 ? kAlaHeight * (0.34 * f.noseTip + 2.0) * std::pow(1 - da, kAlaRound) : 0;
     r += smax(body, ala, 6.0);
-    // The alar crease along the lobule's outer rim (kAlarCrease).
-    if (da < 4) {
-        const double c = std::atan2((Y - alaY) / (Y < alaY ? kAlaBelow : kAlaAbove), ax - alaX);
-        const double arc = smoothstep(kAlarCreaseFrom - 0.15, kAlarCreaseFrom, c / M_PI)
-            * (1 - smoothstep(kAlarCreaseTo, kAlarCreaseTo + 0.15, c / M_PI));
-        r -= kAlarCrease * arc * std::exp(-sq((std::sqrt(da) - 1) / kAlarCreaseWidth));
-    }
     const double phiNostril = lerp(f.phiSn, f.phiPrn, kNostrilAt);
     const double dn = sq((ax - 0.45 * p.alal / 2) / (kNostrilDimpleX * p.nostrilSize))
         + sq((phi - phiNostril) / (kNostrilDimplePhi * (f.phiPrn - f.phiSn)));
