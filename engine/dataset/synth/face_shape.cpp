@@ -112,7 +112,7 @@ constexpr double kColumellaBlend = 2.0; // mm
 // bulge 11 mm proud of the alar base, was flat. v20 (docs/realism.md, "v20"): the centre moves out
 // to 0.7 radii inside al and up, beyond prn's height, because a radial bump on the underside,
 // 45 mm below the head's centre, grows forward and down; taller (1.1 / 1.3 radii), higher and
-// rounder, 16 mm out it peaks 10-12 mm above sn as ICT's bulge does, 1 mm behind it.
+// rounder, 16 mm out it peaks 10 mm above sn as ICT's bulge does, 1.6 mm behind it.
 constexpr double kAlaIn = 0.7;
 constexpr double kAlaAt = 1.35;
 constexpr double kAlaAbove = 1.1;
@@ -251,9 +251,9 @@ double lipProfile(const LipShape& lip, double t, double h, double w, double verm
 }
 
 // The nasolabial fold (v17): a crease from just above and outside the ala's widest point (1.5
-// mm out, 2 mm above kFoldAt of the way from sn to prn) down and out to 8 mm beside and 6 mm below the
-// mouth's corner, bowed kNasolabialBow mm outwards (a quadratic Bezier), with the cheek swelling
-// beside it on the outside. Across it, at signed distance d mm
+// mm out, 2 mm above kFoldAt of the way from sn to prn) down and out to 8 mm beside and 6 mm
+// below the mouth's corner, bowed kNasolabialBow mm outwards (a quadratic Bezier), with the cheek
+// swelling beside it on the outside. Across it, at signed distance d mm
 // (positive towards the cheek): depth (kNasolabialBulge e^-((d - 6)/6)^2 - e^-(d/3.5)^2), faded
 // in over its first 15% and out over its last 20%. Until v16 the cheek ran into the upper lip
 // as one plane, and the curvature maps had no line where ICT-FaceKit's mean face shows the fold
