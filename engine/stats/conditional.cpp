@@ -236,7 +236,7 @@ void Observations::addTransposed(const Eigen::VectorXd& v, Eigen::VectorXd& a) c
 void Observations::pinMeasured(Eigen::VectorXd& a) const
 {
     for (const Block& b : blocks_)
-        if (b.identity || (b.width == 1 && b.rows == 1 && b.P(0, 0) == 1.0))
+        if (b.identity || b.width == 1) // addVertex, addCoordinate (as apply() tells them)
             for (int i = 0; i < b.rows; ++i)
                 if (b.noise(i) == 0.0)
                     a(b.first + i) = b.y(i);

@@ -119,7 +119,7 @@ Frame makeFrame(const FaceParams& p)
     // sn stands on the subnasal ridge (face_frame.h), as far in front of where v19 put it as the
     // ridge is high there; the profile's knot at sn stays where v19 put it (below).
     const double zSnBase = f.zf + 1.0;
-    f.zSn = zSnBase + kSubnasalRidge * std::exp(-sq(kSubnasalRidgeAbove / kSubnasalRidgeSpread));
+    f.zSn = zSnBase + subnasalRidge(0, 0);
     f.ySn = f.yN - std::sqrt(sq(p.nsn) - sq(f.zSn - f.zf));
     f.yPrn = f.ySn + p.tipRise;
     f.zPrn = f.zSn + p.tipProtrusion;

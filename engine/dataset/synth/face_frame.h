@@ -35,10 +35,10 @@ constexpr double kNostrilHalfWidthOfAl = 0.30;
 // and kSubnasalRidgeSpread mm tall (face_shape.cpp soft()). ICT-FaceKit's mean face is such a
 // ridge: at sn's height its surface falls 6 mm from the midline to 12 mm out, where v19's fell
 // 0.6, so v19's midline under the nose lay 5 mm behind ICT's while 12 mm out the two agreed.
-// makeFrame puts sn as far forward as the ridge is high there (3.9 mm) and keeps the profile's
-// knot at sn where v19 put it (the frame solves that knot's depth until the finished skin passes
-// through sn, and the ridge makes up the difference): the ridge moves the midline, not the face
-// beside it.
+// subnasalRidge (below) gives its height. makeFrame puts sn as far forward as the ridge is high
+// there (3.9 mm) and keeps the profile's knot at sn where v19 put it (the frame solves that
+// knot's depth until the finished skin passes through sn, and the ridge makes up the
+// difference): the ridge moves the midline, not the face beside it.
 constexpr double kSubnasalRidge = 5.0;
 constexpr double kSubnasalRidgeHalfWidth = 8.0;
 constexpr double kSubnasalRidgeAbove = 2.0;
@@ -67,6 +67,13 @@ inline double smax(double a, double b, double k)
 {
     const double h = std::max(k - std::abs(a - b), 0.0) / k;
     return std::max(a, b) + h * h * k * 0.25;
+}
+
+/// The subnasal ridge's height (mm) at X mm from the midline and `aboveSn` mm above sn: soft()
+/// adds it to the skin, makeFrame moves sn forward by its value at sn.
+inline double subnasalRidge(double X, double aboveSn)
+{
+    return kSubnasalRidge * std::exp(-sq(X / kSubnasalRidgeHalfWidth) - sq((aboveSn - kSubnasalRidgeAbove) / kSubnasalRidgeSpread));
 }
 
 // Fritsch-Carlson monotone cubic through (x[i], y[i]), x increasing; clamped outside.

@@ -362,7 +362,7 @@ double soft(const Frame& f, double theta0, double phi0, double X, double Y, int 
 
     r += nasolabialFold(f, ax, Y);
     // The subnasal ridge (face_frame.h), on the skin so that it moves with the upper lip.
-    r += kSubnasalRidge * std::exp(-sq(X / kSubnasalRidgeHalfWidth) - sq((b - snB - kSubnasalRidgeAbove) / kSubnasalRidgeSpread));
+    r += subnasalRidge(X, b - snB);
 
     // Cheeks, eyebrows, nose wrinkles.
     r += p.cheekFullness * std::exp(-sq((ax - (half + 17)) / 15) - sq((b - 12) / 16));
