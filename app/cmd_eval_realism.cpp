@@ -1,6 +1,6 @@
 // `facesketch eval realism DATASET --reference REF [--json OUT]`: how far DATASET's faces are from
 // REF's (issue 16; evaluation/realism.h): the aligned mean faces' nearest-surface distance over the
-// central face region, per region, and the PCA modes for 90/95/99% of each set's variance.
+// central face region, per region, their bending (mean curvature), and the PCA modes for 90/95/99% of each set's variance.
 #include "commands.h"
 
 #include "core/atomic_file.h"
@@ -76,6 +76,14 @@ void runEvalRealism(const EvalRealismCommand& c)
               << " mm: nostrils' insides, inner lips): " << r.dataEnclosed << " mm^2 of the data, " << r.referenceEnclosed
               << " mm^2 of the reference; `open` leaves them out\n";
     row(r.open);
+    std::cout << "bending: mean curvature H (1/m, convex positive), area-weighted RMS over each mean face, RMS of the difference at\n"
+                 "nearest points (both directions), and the face-to-face SD of each face's own H\n";
+    std::cout << std::left << std::setw(10) << "region" << std::right << std::setw(12) << "data H" << std::setw(12) << "ref H"
+              << std::setw(12) << "difference" << std::setw(14) << "data spread" << std::setw(14) << "ref spread"
+              << "\n";
+    for (const evaluation::Bending& b : r.bending)
+        std::cout << std::left << std::setw(10) << b.region << std::right << std::setw(12) << b.dataRms << std::setw(12) << b.referenceRms
+                  << std::setw(12) << b.differenceRms << std::setw(14) << b.dataSpread << std::setw(14) << b.referenceSpread << "\n";
     std::cout << "PCA modes for 90 / 95 / 99% of the variance\n";
     std::cout << std::left << std::setw(20) << "set" << std::right << std::setw(8) << "90%" << std::setw(8) << "95%" << std::setw(8)
               << "99%" << std::setw(10) << "samples" << std::setw(12) << "dimensions"
@@ -97,10 +105,15 @@ void runEvalRealism(const EvalRealismCommand& c)
         for (const evaluation::SurfaceDistance& d : r.distances)
             distances.push_back(
                 { { "region", d.region }, { "area_mm2", d.area }, { "rms_mm", d.rms }, { "p95_mm", d.p95 }, { "max_mm", d.max } });
+        nlohmann::json bending = nlohmann::json::array();
+        for (const evaluation::Bending& b : r.bending)
+            bending.push_back({ { "region", b.region }, { "data_rms_per_m", b.dataRms }, { "reference_rms_per_m", b.referenceRms },
+                { "difference_rms_per_m", b.differenceRms }, { "data_spread_per_m", b.dataSpread },
+                { "reference_spread_per_m", b.referenceSpread } });
         const nlohmann::json doc { { "dataset", c.dataset }, { "reference", c.reference }, { "region_radius_mm", c.radius },
             { "landmarks", r.landmarks }, { "alignment_scale", r.alignmentScale }, { "landmark_rms_mm", r.landmarkRms },
             { "data_area_mm2", r.dataArea }, { "data_uncovered_mm2", r.dataUncovered }, { "reference_area_mm2", r.referenceArea },
-            { "reference_uncovered_mm2", r.referenceUncovered }, { "distances", distances },
+            { "reference_uncovered_mm2", r.referenceUncovered }, { "distances", distances }, { "bending", bending },
             { "enclosed",
                 { { "reach_mm", o.enclosedReach }, { "data_mm2", r.dataEnclosed }, { "reference_mm2", r.referenceEnclosed },
                     { "open",
@@ -125,7 +138,8 @@ void addEvalRealismCommand(CLI::App& eval)
     auto* cmd = eval.add_subcommand("realism", "How far a dataset's faces are from a reference set's: mean face and PCA spectrum");
     cmd->footer("Aligns DATASET's mean face onto REF's by a similarity on their shared landmarks and prints the nearest-surface\n"
                 "distance between the two mean faces over the central face region (both directions, area-weighted RMS, 95th\n"
-                "percentile, max; also per region: eyes, brows, nose, mouth, chin), and for each set the number of PCA modes\n"
+                "percentile, max; also per region: eyes, brows, nose, mouth, chin), how much the two mean faces bend there and\n"
+                "how their bending differs (mean curvature) and varies from face to face, and for each set the number of PCA modes\n"
                 "holding 90, 95 and 99% of the shape variance (central region area-weighted, and the whole skin) and the\n"
                 "antisymmetric share of that variance over the central region, and how far each set's faces move in their frame\n"
                 "(the SD of their landmarks' centroid). Every sample of both datasets is used. --json writes the "

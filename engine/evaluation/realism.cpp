@@ -1,5 +1,6 @@
 #include "evaluation/realism.h"
 
+#include "contours/curvature.h"
 #include "core/error.h"
 #include "dataset/manifest.h"
 #include "dataset/mesh_quality.h"
@@ -116,6 +117,73 @@ double measure(const Vertices& from, const Triangles& fromF, const std::vector<i
         out.push_back({ c.distance, area(v), ownerGroup[static_cast<size_t>(owner[static_cast<size_t>(v)])], enclosed[k] != 0 });
     }
     return uncovered;
+}
+
+// Mean curvature (k1 + k2) / 2 of every vertex of (V, F), in 1/m.
+Eigen::VectorXd meanCurvature(const Vertices& V, const Triangles& F)
+{
+    const Curvature c = estimateCurvature(Mesh { V, F });
+    return 500.0 * (c.k1 + c.k2); // 1/mm -> 1/m, halved
+}
+
+// Area-weighted sums per region group (index into kRegions, or -1 for "all" only) of one
+// squared quantity: out[0] is "all", out[1 + g] region g.
+struct WeightedSums {
+    std::vector<double> sum2 = std::vector<double>(1 + std::size(kRegions), 0.0);
+    std::vector<double> weight = std::vector<double>(1 + std::size(kRegions), 0.0);
+    void add(int group, double w, double value2)
+    {
+        for (const int k : { 0, 1 + group }) {
+            sum2[static_cast<size_t>(k)] += w * value2;
+            weight[static_cast<size_t>(k)] += w;
+        }
+    }
+    double rms(size_t k) const { return weight[k] > 0 ? std::sqrt(sum2[k] / weight[k]) : 0.0; }
+};
+
+// H of each central vertex of `from` (area > 0) against H of the surface `to` at its nearest
+// point: adds the squared difference to `difference` and the squared own H to `own`.
+void bendingAgainst(const Vertices& from, const Triangles& fromF, const Eigen::VectorXd& fromH, const std::vector<int>& owner,
+    const std::vector<int>& ownerGroup, const Mesh& to, const registration::SurfaceQuery& toSurface, const Eigen::VectorXd& toH,
+    WeightedSums& difference, WeightedSums& own)
+{
+    const Eigen::VectorXd area = vertexAreas(from, fromF);
+    for (Eigen::Index v = 0; v < from.rows(); ++v) {
+        const int o = owner[static_cast<size_t>(v)];
+        if (o < 0 || area(v) <= 0)
+            continue;
+        const int group = ownerGroup[static_cast<size_t>(o)];
+        const Eigen::Vector3d p = from.row(v).transpose();
+        const registration::ClosestPoint c = toSurface.closest(p);
+        Eigen::Vector3d bary;
+        const auto corner = [&](int k) { return to.F(c.triangle, k); };
+        registration::closestPointOnTriangle(
+            p, to.V.row(corner(0)).transpose(), to.V.row(corner(1)).transpose(), to.V.row(corner(2)).transpose(), bary);
+        const double h = bary(0) * toH(corner(0)) + bary(1) * toH(corner(1)) + bary(2) * toH(corner(2));
+        difference.add(group, area(v), (fromH(v) - h) * (fromH(v) - h));
+        own.add(group, area(v), fromH(v) * fromH(v));
+    }
+}
+
+// The face-to-face spread of H over `set`'s central vertices (owner >= 0), times `scale`.
+WeightedSums bendingSpread(const FaceSet& set, const std::vector<int>& owner, const std::vector<int>& ownerGroup, double scale)
+{
+    const Eigen::Index n = set.shapes.rows(), nv = set.shapes.cols() / 3;
+    Eigen::VectorXd mean = Eigen::VectorXd::Zero(nv), m2 = Eigen::VectorXd::Zero(nv);
+    for (Eigen::Index f = 0; f < n; ++f) { // Welford, per vertex
+        const Eigen::VectorXd h = scale * meanCurvature(dataset::unflatten(set.shapes.row(f)), set.triangles);
+        const Eigen::VectorXd delta = h - mean;
+        mean += delta / static_cast<double>(f + 1);
+        m2 += delta.cwiseProduct(h - mean);
+    }
+    const Eigen::VectorXd area = vertexAreas(meanFace(set), set.triangles);
+    WeightedSums spread;
+    for (Eigen::Index v = 0; v < nv; ++v) {
+        const int o = owner[static_cast<size_t>(v)];
+        if (o >= 0 && area(v) > 0)
+            spread.add(ownerGroup[static_cast<size_t>(o)], area(v), m2(v) / static_cast<double>(n - 1));
+    }
+    return spread;
 }
 
 Spectrum centralSpectrum(const FaceSet& set, const std::vector<int>& owner)
@@ -439,6 +507,21 @@ RealismReport evaluateRealism(const FaceSet& data, const FaceSet& reference, con
                 part.push_back(s);
         if (!part.empty())
             report.distances.push_back(summarise(kRegions[g], std::move(part)));
+    }
+
+    const Eigen::VectorXd dataH = meanCurvature(dataAligned, data.triangles), refH = meanCurvature(refMean, reference.triangles);
+    WeightedSums difference, dataOwn, refOwn;
+    bendingAgainst(dataAligned, data.triangles, dataH, dataOwner, groupOf, Mesh { refMean, reference.triangles }, refSurface, refH,
+        difference, dataOwn);
+    bendingAgainst(refMean, reference.triangles, refH, refOwner, groupOf, Mesh { dataAligned, data.triangles }, dataSurface, dataH,
+        difference, refOwn);
+    const WeightedSums dataSpread = bendingSpread(data, dataOwner, groupOf, 1.0 / sim.scale);
+    const WeightedSums refSpread = bendingSpread(reference, refOwner, groupOf, 1.0);
+    for (size_t k = 0; k < difference.weight.size(); ++k) {
+        if (difference.weight[k] <= 0)
+            continue;
+        report.bending.push_back({ k == 0 ? std::string("all") : std::string(kRegions[k - 1]), dataOwn.rms(k), refOwn.rms(k),
+            difference.rms(k), dataSpread.rms(k), refSpread.rms(k) });
     }
 
     report.dataSkin = shapeSpectrum(data.shapes);

@@ -66,7 +66,25 @@
 // "Now (4 December, v15)"). A set where fewer than half the central vertices find a partner is
 // reported as not measured, with the reason, and the other figures stand.
 //
-// Units: everything in mm (a manifest in cm or m is scaled on loading).
+// Bending. Where and how much the surfaces bend, which a distance in millimetres hardly sees (a
+// crease 0.5 mm deep, a lattice of shallow bumps; docs/realism.md, "Curvature maps"): the mean
+// curvature H = (k1 + k2) / 2 of each mesh (contours/curvature.h: Rusinkiewicz's estimator,
+// convex positive), in 1/m, over the central region and each region, area-weighted:
+//   - each mean face's RMS of H (the data's aligned into the reference's frame, so a scale
+//     difference does not count);
+//   - the RMS of H_data - H_reference at the nearest point of the other mean face (H
+//     interpolated over the nearest triangle by barycentric coordinates), both directions
+//     pooled as the distances are;
+//   - each set's spread: per central vertex, the standard deviation over the set's faces (n - 1)
+//     of that face's own H at the vertex, pooled as sqrt(sum_v w_v s_v^2 / sum_v w_v), w_v the
+//     mean face's vertex area: how much the bending differs from face to face. A generator
+//     whose faces vary by many small bumps has a large spread; the data's is scaled into the
+//     reference's frame by the alignment's scale. Cost: one curvature estimate per face.
+// Curvature depends on the sampling more than positions do (a crease narrower than two edges is
+// smoothed away), so compare sets of similar resolution, or read the figures beside those of a
+// reference against its own import at the data's resolution (docs/realism.md).
+//
+// Units: everything in mm (a manifest in cm or m is scaled on loading), curvature in 1/m.
 
 #include "core/mesh.h"
 #include "dataset/dataset.h"
@@ -122,6 +140,14 @@ struct Asymmetry {
     int pairedVertices = 0; ///< vertices of positive weight with a partner at their mirror image (the rest are left out)
 };
 
+/// Bending (above) over one part of the central region; curvature in 1/m.
+struct Bending {
+    std::string region;                             ///< "all", then each region as SurfaceDistance
+    double dataRms = 0.0, referenceRms = 0.0;       ///< RMS of H over each mean face's part, area-weighted
+    double differenceRms = 0.0;                     ///< RMS of H_data - H_reference at nearest points, both directions
+    double dataSpread = 0.0, referenceSpread = 0.0; ///< face-to-face standard deviation of H, pooled over the part
+};
+
 struct RealismReport {
     std::vector<std::string> landmarks;         ///< the shared central landmarks the alignment used
     double alignmentScale = 1.0;                ///< the similarity's scale, data to reference
@@ -133,6 +159,7 @@ struct RealismReport {
     double dataEnclosed = 0.0;                  ///< mm^2 of the data's central region that is enclosed
     double referenceEnclosed = 0.0;             ///< and of the reference's
     SurfaceDistance open;                       ///< "open": as "all" without the enclosed vertices of either set
+    std::vector<Bending> bending;               ///< "all" first, then each region with area in either set
     Spectrum dataSkin, dataCentral, referenceSkin, referenceCentral;
     Asymmetry dataAsymmetry, referenceAsymmetry; ///< over each set's central region
     /// Placement (above): SD over faces of the shared central landmarks' centroid, x / y / z mm.

@@ -125,6 +125,77 @@ TEST_CASE("realism: a set against a turned, scaled and moved copy of itself is a
     REQUIRE(r.referenceSkin.totalVariance == Approx(1.25 * 1.25 * r.dataSkin.totalVariance).epsilon(1e-9));
     // Area weights scale by 1.25^2 as well.
     REQUIRE(r.referenceCentral.totalVariance == Approx(std::pow(1.25, 4) * r.dataCentral.totalVariance).epsilon(1e-9));
+    // Bending is measured in the reference's frame: the aligned data bends as the copy does,
+    // and the data's face-to-face spread, scaled by the alignment, is the copy's.
+    REQUIRE(r.bending.size() == r.distances.size());
+    for (const Bending& b : r.bending) {
+        INFO(b.region);
+        REQUIRE(b.referenceRms > 1.0);
+        REQUIRE(b.dataRms == Approx(b.referenceRms).epsilon(1e-9));
+        REQUIRE(b.differenceRms < 1e-6 * b.referenceRms);
+        REQUIRE(b.referenceSpread > 0.01);
+        REQUIRE(b.dataSpread == Approx(b.referenceSpread).epsilon(1e-9));
+    }
+}
+
+namespace {
+
+// Sphere caps of radius radii[s] (z = sqrt(R^2 - x^2 - y^2) - R, apex at the origin) on a 41 x 41
+// grid over 100 x 100 mm, with the landmarks on five vertices off the surface, in no triangle,
+// within 20 mm of the centre: the central region (25 mm round them) stays 5 mm inside the
+// grid's border, where the curvature estimate lacks neighbours.
+FaceSet capSet(const char* name, const std::vector<double>& radii)
+{
+    const Mesh grid = makeGrid(41, 41, 100, 100);
+    const Eigen::Index n = grid.V.rows();
+    FaceSet set;
+    set.name = name;
+    set.triangles = grid.F;
+    set.shapes.resize(static_cast<Eigen::Index>(radii.size()), 3 * (n + 5));
+    Vertices marks(5, 3);
+    marks << -20, 20, 0, 20, 20, 0, 0, 0, 0, -20, -20, 0, 20, -20, 0;
+    for (size_t s = 0; s < radii.size(); ++s) {
+        const double R = radii[s];
+        Vertices V(n + 5, 3);
+        V.topRows(n) = grid.V;
+        for (Eigen::Index v = 0; v < n; ++v)
+            V(v, 2) = std::sqrt(R * R - V(v, 0) * V(v, 0) - V(v, 1) * V(v, 1)) - R;
+        V.bottomRows(5) = marks;
+        set.shapes.row(static_cast<Eigen::Index>(s)) = dataset::flatten(V);
+    }
+    set.landmarks = { { "en_r", static_cast<int>(n) }, { "en_l", static_cast<int>(n) + 1 }, { "prn", static_cast<int>(n) + 2 },
+        { "ch_r", static_cast<int>(n) + 3 }, { "ch_l", static_cast<int>(n) + 4 } };
+    return set;
+}
+
+} // namespace
+
+TEST_CASE("realism: spheres of 80 and 160 mm bend 12.5 and 6.25 per metre, and faces of 75 and 95 mm spread by their difference")
+{
+    // Mean curvature of a sphere of radius R is 1 / R: 12.5 / m at 80 mm, 6.25 / m at 160, so
+    // they differ by 6.25 / m everywhere. The grid's triangles are counter-clockwise seen from +z,
+    // so the caps are convex (positive). Rusinkiewicz's estimator is exact to within a percent on
+    // such a regular grid.
+    const RealismReport r = evaluateRealism(capSet("80 mm", { 80, 80 }), capSet("160 mm", { 160, 160 }));
+    REQUIRE(r.alignmentScale == Approx(1.0).epsilon(1e-12));
+    REQUIRE_FALSE(r.bending.empty());
+    REQUIRE(r.bending.front().region == "all");
+    for (const Bending& b : r.bending) {
+        INFO(b.region);
+        CHECK(b.dataRms == Approx(12.5).epsilon(0.01));
+        CHECK(b.referenceRms == Approx(6.25).epsilon(0.01));
+        CHECK(b.differenceRms == Approx(6.25).epsilon(0.02));
+        CHECK(b.dataSpread < 1e-9); // two equal faces
+        CHECK(b.referenceSpread < 1e-9);
+    }
+    // Two faces of 75 and 95 mm: at every vertex H is 1/75 or 1/95 per mm, whose standard
+    // deviation (n - 1) is |1/75 - 1/95| / sqrt(2) = 1.985 / m. (The grid's corners lie 70.7 mm out.)
+    const RealismReport spread = evaluateRealism(capSet("75 and 95 mm", { 75, 95 }), capSet("160 mm", { 160, 160 }));
+    const double expected = 1000.0 * (1.0 / 75 - 1.0 / 95) / std::sqrt(2.0);
+    for (const Bending& b : spread.bending) {
+        INFO(b.region);
+        CHECK(b.dataSpread == Approx(expected).epsilon(0.02));
+    }
 }
 
 TEST_CASE("realism: two planes 3 mm apart under the same landmarks are 3 mm apart everywhere")
