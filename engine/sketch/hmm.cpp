@@ -27,6 +27,8 @@ Mapping mapHmm(const MappingProblem& problem)
 
     const double sigmaD = params.sigmaDTau * problem.tau;
     const double sigmaSkel = params.sigmaSkelTau * problem.tau;
+    const double sigmaDrawn = params.drawnSigmaTau * problem.tau;
+    const std::vector<char>* drawn = sigmaDrawn > 0 ? problem.drawn : nullptr;
     const Eigen::Vector3d axis = viewAxis(problem.camera);
     const double ppmm = pixelsPerMm(problem.camera, problem.world[points[0]]);
     auto candidate = [&](std::size_t point, Eigen::Index j) -> const Candidate& {
@@ -47,8 +49,12 @@ Mapping mapHmm(const MappingProblem& problem)
         const std::size_t i = points[l];
         const Eigen::Index m = static_cast<Eigen::Index>(problem.perPoint[i].size());
         logEmission[l].resize(m);
-        for (Eigen::Index j = 0; j < m; ++j)
-            logEmission[l][j] = -0.5 * square((screenOf(candidate(i, j)) - problem.screen[i]).norm() / sigmaD);
+        for (Eigen::Index j = 0; j < m; ++j) {
+            const Candidate& c = candidate(i, j);
+            logEmission[l][j] = -0.5 * square((screenOf(c) - problem.screen[i]).norm() / sigmaD);
+            if (drawn && (*drawn)[c.vertex])
+                logEmission[l][j] -= 0.5 * square((problem.templateScreen[c.vertex] - problem.screen[i]).norm() / sigmaDrawn);
+        }
     }
 
     // 4.8.5.3: "the nearest stroke point is assigned to each contour", and psi_stroke compares

@@ -144,8 +144,8 @@ StrokeReader::StrokeReader(
 
 StrokeReader::~StrokeReader() = default;
 
-StrokeReading StrokeReader::read(
-    const Stroke& stroke, const Mesh& currentFace, MapperKind kind, const MapperParams& params, const ReadAnchor* anchor)
+StrokeReading StrokeReader::read(const Stroke& stroke, const Mesh& currentFace, MapperKind kind, const MapperParams& params,
+    const ReadAnchor* anchor, const std::vector<char>* drawn)
 {
     validateStroke(stroke, "stroke");
     params.validate();
@@ -157,6 +157,8 @@ StrokeReading StrokeReader::read(
             if (v >= static_cast<std::uint64_t>(nv))
                 fail("stroke: anchor vertex ", v, " outside the face's ", nv, " vertices");
     }
+    if (drawn && drawn->size() != static_cast<std::size_t>(nv))
+        fail("stroke: ", drawn->size(), " drawn-vertex flags for the model's ", nv, " vertices");
     if (currentFace.V.rows() != nv || currentFace.F.rows() != model_.triangles.rows())
         fail("stroke: the current face has ", currentFace.V.rows(), " vertices and ", currentFace.F.rows(), " triangles; the model has ",
             nv, " and ", model_.triangles.rows());
@@ -265,7 +267,7 @@ StrokeReading StrokeReader::read(
     }
 
     const MappingProblem problem { camera, projected.screen, projected.world, cloud, perPoint, templateScreen, templateDepth, impl_->rings,
-        tau, params };
+        tau, params, drawn };
     Mapping mapping;
     switch (kind) {
     case MapperKind::Nearest:

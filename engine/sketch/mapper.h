@@ -81,8 +81,10 @@ public:
     /// limits the current face's own contour candidates (the simple mapper's, and
     /// MapperParams::ownContours'); Error for its rings outside [0, 4] or a vertex outside the
     /// face.
+    /// `drawn`, if given, flags (#V) the vertices earlier strokes of a similar view constrain
+    /// (TrackingModel::drawnVertices), for MapperParams::drawnSigmaTau; Error for another size.
     StrokeReading read(const Stroke& stroke, const Mesh& currentFace, MapperKind kind, const MapperParams& params = {},
-        const ReadAnchor* anchor = nullptr);
+        const ReadAnchor* anchor = nullptr, const std::vector<char>* drawn = nullptr);
 
     struct Timing {
         double candidatesMs = 0; ///< projection, GPU cloud and per-point sets

@@ -36,6 +36,7 @@ void MapperParams::validate() const
     positive("sigmaStroke", sigmaStroke);
     positive("sigmaSkelTau", sigmaSkelTau);
     nonNegative("unreachableHops", unreachableHops);
+    nonNegative("drawnSigmaTau", drawnSigmaTau);
     nonNegative("lambda", lambda);
     nonNegative("alpha", alpha);
     nonNegative("beta", beta);
@@ -59,7 +60,7 @@ ParamTable paramTable(MapperParams& params)
                  { "sigmaStroke", &params.sigmaStroke }, { "sigmaSkelTau", &params.sigmaSkelTau },
                  { "unreachableHops", &params.unreachableHops }, { "lambda", &params.lambda }, { "alpha", &params.alpha },
                  { "beta", &params.beta }, { "heuristicEndpointRadiusTau", &params.heuristicEndpointRadiusTau },
-                 { "rtscThreshold", &params.rtscThreshold } },
+                 { "rtscThreshold", &params.rtscThreshold }, { "drawnSigmaTau", &params.drawnSigmaTau } },
         { { "maxCandidatesPerPoint", &params.maxCandidatesPerPoint }, { "borderRings", &params.borderRings },
             { "similarFaces", &params.similarFaces } },
         { { "ownContours", &params.ownContours }, { "viewPlaneOnly", &params.viewPlaneOnly },

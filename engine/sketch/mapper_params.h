@@ -127,6 +127,14 @@ struct MapperParams {
     /// 0.563 / 0.426 / 0.397 / 0.296 -> 0.562 / 0.409 / 0.399 / 0.301 (docs/sketching.md).
     /// false in thesis().
     bool strokeDepthFromFace = true;
+    /// What the user already drew in this view (StrokeReader::read's `drawn`): a candidate whose
+    /// vertex an earlier stroke of a similar view constrains is charged, in its emission, for
+    /// the screen distance from the stroke point to that vertex on the current face, as a
+    /// Gaussian of drawnSigmaTau x tau (0: off). The current face passes near what was drawn, so
+    /// a stroke is not read onto a line the user already put elsewhere. Not in the thesis,
+    /// which read every stroke against the candidates alone (4.8.5); why: docs/sketching.md,
+    /// "What was drawn before". Off in thesis().
+    double drawnSigmaTau = 0.5;
 
     // --- heuristic (4.6.1) ---
     double lambda = 1.0; ///< weight of the endpoint term of eq. 4.29 (in tau units)
@@ -154,6 +162,7 @@ struct MapperParams {
         p.viewPlaneOnly = false;
         p.acrossStrokeOnly = false;
         p.strokeDepthFromFace = false;
+        p.drawnSigmaTau = 0.0;
         return p;
     }
     /// Throws Error naming the first field that is not positive/finite where it must be.

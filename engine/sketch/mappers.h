@@ -31,6 +31,9 @@ struct MappingProblem {
     const RingDistances& rings; ///< k-ring hop counts of the topology (4.8.4)
     double tau = 1;             ///< pixels (4.8.5.2)
     const MapperParams& params;
+    /// #V flags: vertices earlier strokes of a similar view constrain (MapperParams::drawnSigmaTau),
+    /// or null.
+    const std::vector<char>* drawn = nullptr;
 };
 
 struct Mapping {

@@ -2,6 +2,8 @@
 
 #include "core/error.h"
 #include "core/stopwatch.h"
+#include "geometry/camera.h"
+#include "sketch/stroke_candidates.h"
 
 namespace facesketch::sketch {
 
@@ -13,15 +15,24 @@ void RefineOptions::validate() const
         fail("refinement: anchor rings ", anchorRings, " not in [-1, 4]");
 }
 
+std::vector<char> drawnFor(const TrackingModel& tracking, const Stroke& stroke, const MapperParams& params, int exceptStroke)
+{
+    if (!(params.drawnSigmaTau > 0))
+        return {};
+    return tracking.drawnVertices(viewAxis(orbitCamera(stroke.view)), exceptStroke);
+}
+
 namespace {
 
 // One reading of the stroke against the tracking model's face, timed into `out`, given to the
-// hook when it pins anything.
+// hook when it pins anything. `exceptStroke`: the tracking model's stroke that is this stroke's
+// own earlier reading (a refinement pass), left out of what was drawn before.
 StrokeReading timedRead(StrokeReader& reader, const TrackingModel& tracking, const Stroke& stroke, MapperKind kind,
-    const MapperParams& params, const ReadingHook& hook, ReadResult& out, const ReadAnchor* anchor = nullptr)
+    const MapperParams& params, const ReadingHook& hook, ReadResult& out, int exceptStroke, const ReadAnchor* anchor = nullptr)
 {
     Stopwatch clock;
-    StrokeReading r = reader.read(stroke, tracking.faceMesh(), kind, params, anchor);
+    const std::vector<char> drawn = drawnFor(tracking, stroke, params, exceptStroke);
+    StrokeReading r = reader.read(stroke, tracking.faceMesh(), kind, params, anchor, drawn.empty() ? nullptr : &drawn);
     out.readMs += clock.milliseconds();
     out.timing.candidatesMs += reader.lastTiming().candidatesMs;
     out.timing.mappingMs += reader.lastTiming().mappingMs;
@@ -52,7 +63,8 @@ ReadResult applyAndRefine(StrokeReader& reader, TrackingModel& tracking, const S
     for (int pass = 0; pass < refine.passes; ++pass) {
         StrokeReading next;
         try {
-            next = timedRead(reader, tracking, stroke, again, params, hook, out, refine.anchorRings >= 0 ? &anchor : nullptr);
+            next = timedRead(
+                reader, tracking, stroke, again, params, hook, out, tracking.strokes(), refine.anchorRings >= 0 ? &anchor : nullptr);
         } catch (const Error&) {
             break; // the previous reading stays applied
         }
@@ -79,7 +91,7 @@ ReadResult readAndApply(StrokeReader& reader, TrackingModel& tracking, const Str
 {
     refine.validate();
     ReadResult first;
-    StrokeReading reading = timedRead(reader, tracking, stroke, kind, params, hook, first);
+    StrokeReading reading = timedRead(reader, tracking, stroke, kind, params, hook, first, 0);
     ReadResult out = applyAndRefine(reader, tracking, stroke, std::move(reading), kind, params, apply, refine, hook);
     out.readMs += first.readMs;
     out.timing.candidatesMs += first.timing.candidatesMs;

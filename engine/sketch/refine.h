@@ -83,6 +83,11 @@ using ReadingHook = std::function<void(StrokeReading&)>;
 /// unchanged. A pass whose reading is refused, pins nothing or cannot be applied ends the
 /// refinement and leaves the previous reading applied. readMs and timing count the passes
 /// only.
+/// The vertices earlier strokes drew as seen from `stroke`'s view (TrackingModel::drawnVertices,
+/// leaving out stroke `exceptStroke`, 0 for none), or nothing when params.drawnSigmaTau is 0:
+/// what StrokeReader::read takes as `drawn`.
+std::vector<char> drawnFor(const TrackingModel& tracking, const Stroke& stroke, const MapperParams& params, int exceptStroke);
+
 ReadResult applyAndRefine(StrokeReader& reader, TrackingModel& tracking, const Stroke& stroke, StrokeReading first, MapperKind kind,
     const MapperParams& params, const ApplyOptions& apply, const RefineOptions& refine, const ReadingHook& hook = {});
 

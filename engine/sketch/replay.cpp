@@ -28,9 +28,30 @@ RefineOptions SessionReplayer::refineFor(const StrokeAction& action) const
     return r;
 }
 
+namespace {
+
+// Parameters added to MapperParams after sessions began recording all of them (5 December
+// 2026), each with the value that reads a stroke as the releases before it did.
+const std::map<std::string, double>& addedLater()
+{
+    static const std::map<std::string, double> added = { { "drawnSigmaTau", 0.0 } };
+    return added;
+}
+
+} // namespace
+
 MapperParams SessionReplayer::paramsFor(const StrokeAction& action) const
 {
     std::map<std::string, double> values = action.reading.mapperParams;
+    // A stroke that recorded every parameter but one added later was read by a release without
+    // it: that parameter is off, so the stroke replays to the face it gave then. A partial
+    // record (a hand-written session) takes today's defaults for what it leaves out.
+    bool everyEarlier = !values.empty();
+    for (const auto& [name, value] : mapperParamValues(MapperParams {}))
+        everyEarlier = everyEarlier && (values.count(name) || addedLater().count(name));
+    if (everyEarlier)
+        for (const auto& [name, off] : addedLater())
+            values.try_emplace(name, off);
     for (const auto& [name, value] : paramOverrides_)
         values[name] = value;
     return mapperParamsFrom(values);
@@ -53,7 +74,8 @@ ReplayOutcome SessionReplayer::apply(const StrokeAction& action, std::optional<M
     }
     Stopwatch clock;
     try {
-        out.reading = reader_.read(action.stroke, tracking_.faceMesh(), out.mapper, out.params);
+        const std::vector<char> drawn = drawnFor(tracking_, action.stroke, out.params, 0);
+        out.reading = reader_.read(action.stroke, tracking_.faceMesh(), out.mapper, out.params, nullptr, drawn.empty() ? nullptr : &drawn);
     } catch (const Error& e) {
         out.kind = ReplayOutcome::Kind::Refused;
         out.error = e.what();

@@ -92,7 +92,9 @@ public:
         paramOverrides_ = overrides;
     }
     /// The mapper's parameters `action` is read with: the defaults, with what the stroke
-    /// recorded set (ReadingOptions::mapperParams), then the overrides (mapperParamsFrom).
+    /// recorded set (ReadingOptions::mapperParams), then the overrides (mapperParamsFrom). A
+    /// record of every parameter but some added since (MapperParams::drawnSigmaTau) was written
+    /// before they existed: those are off, as the release that wrote it read the stroke.
     /// Throws Error naming a parameter this release does not know or a value it refuses.
     MapperParams paramsFor(const StrokeAction& action) const;
 

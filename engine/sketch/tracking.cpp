@@ -146,6 +146,18 @@ int TrackingModel::observedVertices() const
     return n;
 }
 
+std::vector<char> TrackingModel::drawnVertices(const Eigen::Vector3d& viewAxis, int exceptStroke) const
+{
+    const double cosLimit = std::cos(options_.supersedeAngleDeg * M_PI / 180.0);
+    const auto& constraints = state().constraints;
+    std::vector<char> drawn(constraints.size(), 0);
+    for (size_t v = 0; v < constraints.size(); ++v)
+        for (const VertexConstraint& c : constraints[v])
+            if (c.stroke != exceptStroke && (c.rows == 3 || c.viewAxis.dot(viewAxis) >= cosLimit))
+                drawn[v] = 1;
+    return drawn;
+}
+
 stats::Observations TrackingModel::observations() const
 {
     stats::Observations obs;

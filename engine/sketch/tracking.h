@@ -132,6 +132,11 @@ public:
     int strokes() const { return state().strokes; }
     /// Vertices with at least one constraint.
     int observedVertices() const;
+    /// #V flags: the vertices a constraint of a stroke other than `exceptStroke` holds, whose
+    /// view is within TrackingOptions::supersedeAngleDeg of `viewAxis` (towards the viewer) or
+    /// has none (3D): what the user already drew as seen from that view, for the reader
+    /// (MapperParams::drawnSigmaTau).
+    std::vector<char> drawnVertices(const Eigen::Vector3d& viewAxis, int exceptStroke = 0) const;
     /// The measurements step 3 gives the face model (step 2's combination).
     stats::Observations observations() const;
 

@@ -88,10 +88,11 @@ TEST_CASE("mapper: every named parameter is listed with its value, and the list 
 {
     const MapperParams defaults;
     const std::map<std::string, double> values = mapperParamValues(defaults);
-    REQUIRE(values.size() == 28);
+    REQUIRE(values.size() == 29);
     CHECK(values.at("sigmaDTau") == defaults.sigmaDTau);
     CHECK(values.at("maxCandidatesPerPoint") == defaults.maxCandidatesPerPoint);
     CHECK(values.at("useSkeleton") == 1.0);
+    CHECK(values.at("drawnSigmaTau") == defaults.drawnSigmaTau);
     CHECK(values.at("ownContours") == 0.0);
     // Each name sets the field it lists: change one at a time, and only that one moves.
     for (const auto& [name, value] : values) {
@@ -151,6 +152,14 @@ TEST_CASE("mapper: parameters are set by name, and the thesis' set keeps the the
     // 4.49's depth as the thesis has it: the candidates' own, not beyond the face's.
     CHECK(MapperParams().strokeDepthFromFace);
     CHECK(!thesis.strokeDepthFromFace);
+    // What was drawn before charges the HMM's emission by default; the thesis read each stroke alone.
+    CHECK(MapperParams().drawnSigmaTau > 0);
+    CHECK(thesis.drawnSigmaTau == 0);
+    MapperParams drawn;
+    setMapperParam(drawn, "drawnSigmaTau=1.5");
+    CHECK(drawn.drawnSigmaTau == 1.5);
+    setMapperParam(drawn, "drawnSigmaTau=-1");
+    REQUIRE_THROWS_WITH(drawn.validate(), Catch::Contains("drawnSigmaTau = -1"));
     setMapperParam(p, "strokeDepthFromFace=0");
     CHECK(!p.strokeDepthFromFace);
 }
@@ -540,5 +549,56 @@ TEST_CASE("mapper: the HMM follows a line that recedes in depth: the stroke term
             CHECK(covered >= oldCovered + 0.3);
         }
     }
+    REQUIRE_NO_VALIDATION_MESSAGES();
+}
+
+TEST_CASE("mapper: a line the user already drew elsewhere is not read again under a new stroke")
+{
+    // The current face has its mouth 6 mm lower than the mean face (as earlier strokes drew it)
+    // and the upper lip's border among what those strokes drew. A stroke traced where the mean
+    // face has that border lies 6 mm above where the user put it: with MapperParams::drawnSigmaTau
+    // the HMM charges the border's candidates for that distance and reads the stroke as
+    // something else; without it (or without the flags) the reading is the same as ever.
+    const test::SketchWorld& w = test::sketchWorld();
+    StrokeReader reader(test::device(), w.model, w.candidateFaces, w.flags);
+    const std::vector<int>& border = w.contours.at("lip_upper_outer");
+    std::vector<int> lipVertices;
+    for (const auto& [name, path] : w.contours)
+        if (name.rfind("lip_", 0) == 0)
+            lipVertices.insert(lipVertices.end(), path.begin(), path.end());
+    Mesh current = w.mean;
+    for (Eigen::Index v = 0; v < current.V.rows(); ++v) {
+        double d2 = 1e300;
+        for (int l : lipVertices)
+            d2 = std::min(d2, (w.mean.V.row(v) - w.mean.V.row(l)).squaredNorm());
+        current.V(v, 1) -= 6.0 * std::exp(-d2 / (8.0 * 8.0));
+    }
+    std::vector<char> drawn(static_cast<std::size_t>(w.model.vertexCount()), 0);
+    for (int v : border)
+        drawn[static_cast<std::size_t>(v)] = 1;
+    const Stroke stroke = traceOf(w.mean, border);
+    const RingDistances rings(w.model.triangles, w.model.vertexCount(), 4);
+
+    MapperParams off, on;
+    off.drawnSigmaTau = 0;
+    on.drawnSigmaTau = 0.5;
+    const StrokeReading plain = reader.read(stroke, current, MapperKind::Hmm, off);
+    const StrokeReading ignored = reader.read(stroke, current, MapperKind::Hmm, off, nullptr, &drawn);
+    const StrokeReading charged = reader.read(stroke, current, MapperKind::Hmm, on, nullptr, &drawn);
+    checkWellFormed(charged, w.model.vertexCount());
+    REQUIRE(ignored.observations.size() == plain.observations.size());
+    for (size_t k = 0; k < plain.observations.size(); ++k) {
+        REQUIRE(ignored.observations[k].vertex == plain.observations[k].vertex);
+        REQUIRE(ignored.observations[k].position == plain.observations[k].position);
+    }
+    const double before = overlap(plain, border, rings, 0).first, after = overlap(charged, border, rings, 0).first;
+    std::cout << "drawn: " << before << " of the plain reading's vertices on the border, " << after << " charged ("
+              << charged.observations.size() << " vertices)\n";
+    CHECK(before >= 0.8);
+    CHECK(after <= 0.2);
+    CHECK_FALSE(charged.observations.empty());
+    // Flags of another size are refused by name.
+    const std::vector<char> shortFlags(3, 0);
+    REQUIRE_THROWS_WITH(reader.read(stroke, current, MapperKind::Hmm, on, nullptr, &shortFlags), Catch::Contains("3 drawn-vertex flags"));
     REQUIRE_NO_VALIDATION_MESSAGES();
 }

@@ -125,6 +125,17 @@ TEST_CASE("replay: a stroke is read with the mapper parameters it recorded, the 
     REQUIRE(replayer.tracking().face() == withRecorded.face());
     REQUIRE(replayer.tracking().face() != withDefaults.face());
 
+    // A full record written before a parameter existed reads with it off; a partial record
+    // takes today's default for it.
+    std::map<std::string, double> older = mapperParamValues(MapperParams {});
+    REQUIRE(older.erase("drawnSigmaTau") == 1);
+    REQUIRE(MapperParams {}.drawnSigmaTau > 0);
+    StrokeAction full { strokes[0], {} }, partial { strokes[0], {} };
+    full.reading.mapperParams = older;
+    partial.reading.mapperParams = { { "sigmaDTau", 0.3 } };
+    CHECK(replayer.paramsFor(full).drawnSigmaTau == 0.0);
+    CHECK(replayer.paramsFor(partial).drawnSigmaTau == MapperParams {}.drawnSigmaTau);
+
     // A parameter this release does not know is refused by name, and nothing changes.
     StrokeAction unknown { strokes[1], {} };
     unknown.reading.mapperParams = { { "sigmaWobble", 1.0 } };

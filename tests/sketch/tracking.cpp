@@ -182,6 +182,48 @@ TEST_CASE("tracking: oversketching a feature replaces it instead of averaging th
         REQUIRE(mixed.state().constraints[v].size() == 1);
 }
 
+TEST_CASE("tracking: what was drawn before, seen from a view: strokes of similar views and 3D constraints, less the stroke left out")
+{
+    const auto& t = test::trainedSynth();
+    const auto lips = contourVertices("lip");
+    const auto brows = contourVertices("eyebrow");
+    const auto eyes = contourVertices("eye_socket");
+    const Eigen::Vector3d front(0, 0, 1), side(1, 0, 0), near(std::sin(0.35), 0, std::cos(0.35)); // 20 degrees from the front
+    TrackingModel tracking(t.model);
+    const auto count = [](const std::vector<char>& flags) { return std::count(flags.begin(), flags.end(), 1); };
+    REQUIRE(tracking.drawnVertices(front).size() == static_cast<size_t>(t.model.vertexCount()));
+    REQUIRE(count(tracking.drawnVertices(front)) == 0);
+    tracking.apply(reading(lips, 0, kFront));    // stroke 1
+    tracking.apply(reading(brows, 0, kProfile)); // stroke 2
+    const auto in
+        = [](const std::vector<std::uint32_t>& set, std::uint32_t v) { return std::find(set.begin(), set.end(), v) != set.end(); };
+    for (std::uint32_t v : eyes) // the counts below hold for disjoint lines
+        REQUIRE_FALSE((in(lips, v) || in(brows, v)));
+    for (std::uint32_t v : brows)
+        REQUIRE_FALSE(in(lips, v));
+    for (const Eigen::Vector3d& axis : { front, near }) {
+        const std::vector<char> d = tracking.drawnVertices(axis);
+        REQUIRE(count(d) == static_cast<std::ptrdiff_t>(lips.size()));
+        for (std::uint32_t v : lips)
+            REQUIRE(d[v] == 1);
+    }
+    const std::vector<char> fromSide = tracking.drawnVertices(side);
+    REQUIRE(count(fromSide) == static_cast<std::ptrdiff_t>(brows.size()));
+    for (std::uint32_t v : brows)
+        REQUIRE(fromSide[v] == 1);
+    // Stroke 1 left out (a refinement pass of it reads against its own reading).
+    REQUIRE(count(tracking.drawnVertices(front, 1)) == 0);
+    REQUIRE(count(tracking.drawnVertices(side, 1)) == static_cast<std::ptrdiff_t>(brows.size()));
+    // A 3D constraint is drawn as seen from every view.
+    tracking.apply(reading(eyes, 0, Eigen::Matrix<double, 2, 3>::Zero())); // stroke 3
+    for (const Eigen::Vector3d& axis : { front, side }) {
+        const std::vector<char> d = tracking.drawnVertices(axis);
+        for (std::uint32_t v : eyes)
+            REQUIRE(d[v] == 1);
+        REQUIRE(count(d) == static_cast<std::ptrdiff_t>(eyes.size() + (axis == front ? lips.size() : brows.size())));
+    }
+}
+
 TEST_CASE("tracking: a redrawn line supersedes the old one where it passes, mapped to other vertices or not")
 {
     const auto& t = test::trainedSynth();
