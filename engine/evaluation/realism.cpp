@@ -126,8 +126,8 @@ Eigen::VectorXd meanCurvature(const Vertices& V, const Triangles& F)
     return 500.0 * (c.k1 + c.k2); // 1/mm -> 1/m, halved
 }
 
-// Area-weighted sums per region group (index into kRegions, or -1 for "all" only) of one
-// squared quantity: out[0] is "all", out[1 + g] region g.
+// Area-weighted sums of one squared quantity, over the whole central region (index 0, "all")
+// and per region group g (index 1 + g, g indexing kRegions): add() counts a sample in both.
 struct WeightedSums {
     std::vector<double> sum2 = std::vector<double>(1 + std::size(kRegions), 0.0);
     std::vector<double> weight = std::vector<double>(1 + std::size(kRegions), 0.0);
