@@ -1,6 +1,7 @@
 // `facesketch eval realism DATASET --reference REF [--json OUT]`: how far DATASET's faces are from
 // REF's (issue 16; evaluation/realism.h): the aligned mean faces' nearest-surface distance over the
-// central face region, per region, their bending (mean curvature), and the PCA modes for 90/95/99% of each set's variance.
+// central face region, per region, their bending (mean curvature), and the PCA modes for 90/95/99%
+// of each set's variance.
 #include "commands.h"
 
 #include "core/atomic_file.h"

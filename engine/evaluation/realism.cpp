@@ -68,6 +68,9 @@ struct Sample {
     double distance, weight;
     int group;     // index into kRegions
     bool enclosed; // enclosedVertices
+    // Bending: the vertex's own mean curvature, and less the other surface's at the nearest point
+    // (H interpolated over the nearest triangle), 1/m.
+    double bend, bendDifference;
 };
 
 SurfaceDistance summarise(const std::string& region, std::vector<Sample> samples)
@@ -95,10 +98,12 @@ SurfaceDistance summarise(const std::string& region, std::vector<Sample> samples
     return s;
 }
 
-// Distances from the central vertices of `from` to the skin of `to`, appended to `out`;
-// returns the uncovered area and adds the enclosed area to `enclosedArea`.
-double measure(const Vertices& from, const Triangles& fromF, const std::vector<int>& owner, const std::vector<int>& ownerGroup,
-    const registration::SurfaceQuery& to, double reach, std::vector<Sample>& out, double& enclosedArea)
+// Distances from the central vertices of `from` to the skin of `to`, and their mean curvature
+// (fromH) against `to`'s (toH, per vertex of to.mesh()) there, appended to `out`; returns the
+// uncovered area and adds the enclosed area to `enclosedArea`.
+double measure(const Vertices& from, const Triangles& fromF, const Eigen::VectorXd& fromH, const std::vector<int>& owner,
+    const std::vector<int>& ownerGroup, const registration::SurfaceQuery& to, const Eigen::VectorXd& toH, double reach,
+    std::vector<Sample>& out, double& enclosedArea)
 {
     const Eigen::VectorXd area = vertexAreas(from, fromF);
     std::vector<int> central;
@@ -109,12 +114,20 @@ double measure(const Vertices& from, const Triangles& fromF, const std::vector<i
     double uncovered = 0;
     for (size_t k = 0; k < central.size(); ++k) {
         const int v = central[k];
-        const registration::ClosestPoint c = to.closest(from.row(v).transpose());
+        const Eigen::Vector3d p = from.row(v).transpose();
+        const registration::ClosestPoint c = to.closest(p);
         if (c.onBoundary)
             uncovered += area(v);
         if (enclosed[k])
             enclosedArea += area(v);
-        out.push_back({ c.distance, area(v), ownerGroup[static_cast<size_t>(owner[static_cast<size_t>(v)])], enclosed[k] != 0 });
+        const Mesh& m = to.mesh();
+        const auto corner = [&](int i) { return m.F(c.triangle, i); };
+        Eigen::Vector3d bary;
+        registration::closestPointOnTriangle(
+            p, m.V.row(corner(0)).transpose(), m.V.row(corner(1)).transpose(), m.V.row(corner(2)).transpose(), bary);
+        const double toBend = bary(0) * toH(corner(0)) + bary(1) * toH(corner(1)) + bary(2) * toH(corner(2));
+        out.push_back({ c.distance, area(v), ownerGroup[static_cast<size_t>(owner[static_cast<size_t>(v)])], enclosed[k] != 0, fromH(v),
+            fromH(v) - toBend });
     }
     return uncovered;
 }
@@ -140,30 +153,6 @@ struct WeightedSums {
     }
     double rms(size_t k) const { return weight[k] > 0 ? std::sqrt(sum2[k] / weight[k]) : 0.0; }
 };
-
-// H of each central vertex of `from` (area > 0) against H of the surface `to` at its nearest
-// point: adds the squared difference to `difference` and the squared own H to `own`.
-void bendingAgainst(const Vertices& from, const Triangles& fromF, const Eigen::VectorXd& fromH, const std::vector<int>& owner,
-    const std::vector<int>& ownerGroup, const Mesh& to, const registration::SurfaceQuery& toSurface, const Eigen::VectorXd& toH,
-    WeightedSums& difference, WeightedSums& own)
-{
-    const Eigen::VectorXd area = vertexAreas(from, fromF);
-    for (Eigen::Index v = 0; v < from.rows(); ++v) {
-        const int o = owner[static_cast<size_t>(v)];
-        if (o < 0 || area(v) <= 0)
-            continue;
-        const int group = ownerGroup[static_cast<size_t>(o)];
-        const Eigen::Vector3d p = from.row(v).transpose();
-        const registration::ClosestPoint c = toSurface.closest(p);
-        Eigen::Vector3d bary;
-        const auto corner = [&](int k) { return to.F(c.triangle, k); };
-        registration::closestPointOnTriangle(
-            p, to.V.row(corner(0)).transpose(), to.V.row(corner(1)).transpose(), to.V.row(corner(2)).transpose(), bary);
-        const double h = bary(0) * toH(corner(0)) + bary(1) * toH(corner(1)) + bary(2) * toH(corner(2));
-        difference.add(group, area(v), (fromH(v) - h) * (fromH(v) - h));
-        own.add(group, area(v), fromH(v) * fromH(v));
-    }
-}
 
 // The face-to-face spread of H over `set`'s central vertices (owner >= 0), times `scale`.
 WeightedSums bendingSpread(const FaceSet& set, const std::vector<int>& owner, const std::vector<int>& ownerGroup, double scale)
@@ -488,11 +477,14 @@ RealismReport evaluateRealism(const FaceSet& data, const FaceSet& reference, con
     const registration::SurfaceQuery refSurface(Mesh { refMean, reference.triangles });
     std::vector<Sample> all;
     const double reach = options.enclosedReach;
-    report.dataUncovered = measure(dataAligned, data.triangles, dataOwner, groupOf, refSurface, reach, all, report.dataEnclosed);
+    const Eigen::VectorXd dataH = meanCurvature(dataAligned, data.triangles), refH = meanCurvature(refMean, reference.triangles);
+    report.dataUncovered
+        = measure(dataAligned, data.triangles, dataH, dataOwner, groupOf, refSurface, refH, reach, all, report.dataEnclosed);
     for (const Sample& s : all)
         report.dataArea += s.weight;
     const size_t dataCount = all.size();
-    report.referenceUncovered = measure(refMean, reference.triangles, refOwner, groupOf, dataSurface, reach, all, report.referenceEnclosed);
+    report.referenceUncovered
+        = measure(refMean, reference.triangles, refH, refOwner, groupOf, dataSurface, dataH, reach, all, report.referenceEnclosed);
     for (size_t k = dataCount; k < all.size(); ++k)
         report.referenceArea += all[k].weight;
 
@@ -509,12 +501,12 @@ RealismReport evaluateRealism(const FaceSet& data, const FaceSet& reference, con
             report.distances.push_back(summarise(kRegions[g], std::move(part)));
     }
 
-    const Eigen::VectorXd dataH = meanCurvature(dataAligned, data.triangles), refH = meanCurvature(refMean, reference.triangles);
     WeightedSums difference, dataOwn, refOwn;
-    bendingAgainst(dataAligned, data.triangles, dataH, dataOwner, groupOf, Mesh { refMean, reference.triangles }, refSurface, refH,
-        difference, dataOwn);
-    bendingAgainst(refMean, reference.triangles, refH, refOwner, groupOf, Mesh { dataAligned, data.triangles }, dataSurface, dataH,
-        difference, refOwn);
+    for (size_t k = 0; k < all.size(); ++k) {
+        const Sample& x = all[k];
+        difference.add(x.group, x.weight, x.bendDifference * x.bendDifference);
+        (k < dataCount ? dataOwn : refOwn).add(x.group, x.weight, x.bend * x.bend);
+    }
     const WeightedSums dataSpread = bendingSpread(data, dataOwner, groupOf, 1.0 / sim.scale);
     const WeightedSums refSpread = bendingSpread(reference, refOwner, groupOf, 1.0);
     for (size_t k = 0; k < difference.weight.size(); ++k) {

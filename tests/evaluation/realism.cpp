@@ -54,29 +54,39 @@ FaceSet bumpySet(int samples)
     });
 }
 
-// Two samples of the plane z = z0 +- 1 (20 x 20 vertices over 100 x 100 mm) plus five vertices
-// off the plane, in no triangle, that carry the landmarks: the landmarks stay put while the
-// plane's height is z0.
-FaceSet planeSet(double z0)
+// `samples` faces on `grid` with heights z = height(s, x, y), plus the five vertices `marks` (5 x 3),
+// in no triangle, that carry the landmarks en_r, en_l, prn, ch_r and ch_l: the landmarks stay put
+// whatever the surface does.
+FaceSet markedSet(
+    const char* name, const Mesh& grid, int samples, const std::function<double(int, double, double)>& height, const Vertices& marks)
 {
-    const Mesh grid = makeGrid(20, 20, 100, 100);
     const Eigen::Index n = grid.V.rows();
     FaceSet set;
-    set.name = "plane";
+    set.name = name;
     set.triangles = grid.F;
-    set.shapes.resize(2, 3 * (n + 5));
-    Vertices marks(5, 3);
-    marks << -40, 40, 10, 40, 40, 10, 0, 0, 20, -30, -40, 10, 30, -40, 10;
-    for (int s = 0; s < 2; ++s) {
+    set.shapes.resize(samples, 3 * (n + 5));
+    for (int s = 0; s < samples; ++s) {
         Vertices V(n + 5, 3);
         V.topRows(n) = grid.V;
-        V.topRows(n).col(2).setConstant(z0 + (s == 0 ? -1 : 1));
+        for (Eigen::Index v = 0; v < n; ++v)
+            V(v, 2) = height(s, V(v, 0), V(v, 1));
         V.bottomRows(5) = marks;
         set.shapes.row(s) = dataset::flatten(V);
     }
     set.landmarks = { { "en_r", static_cast<int>(n) }, { "en_l", static_cast<int>(n) + 1 }, { "prn", static_cast<int>(n) + 2 },
         { "ch_r", static_cast<int>(n) + 3 }, { "ch_l", static_cast<int>(n) + 4 } };
     return set;
+}
+
+// Two samples of the plane z = z0 +- 1 (20 x 20 vertices over 100 x 100 mm) plus five vertices
+// off the plane, in no triangle, that carry the landmarks: the landmarks stay put while the
+// plane's height is z0.
+FaceSet planeSet(double z0)
+{
+    Vertices marks(5, 3);
+    marks << -40, 40, 10, 40, 40, 10, 0, 0, 20, -30, -40, 10, 30, -40, 10;
+    return markedSet(
+        "plane", makeGrid(20, 20, 100, 100), 2, [z0](int s, double, double) { return z0 + (s == 0 ? -1 : 1); }, marks);
 }
 
 // samples x 3*vertices data with the given per-mode variances (sample variance, n - 1), on
@@ -146,26 +156,15 @@ namespace {
 // grid's border, where the curvature estimate lacks neighbours.
 FaceSet capSet(const char* name, const std::vector<double>& radii)
 {
-    const Mesh grid = makeGrid(41, 41, 100, 100);
-    const Eigen::Index n = grid.V.rows();
-    FaceSet set;
-    set.name = name;
-    set.triangles = grid.F;
-    set.shapes.resize(static_cast<Eigen::Index>(radii.size()), 3 * (n + 5));
     Vertices marks(5, 3);
     marks << -20, 20, 0, 20, 20, 0, 0, 0, 0, -20, -20, 0, 20, -20, 0;
-    for (size_t s = 0; s < radii.size(); ++s) {
-        const double R = radii[s];
-        Vertices V(n + 5, 3);
-        V.topRows(n) = grid.V;
-        for (Eigen::Index v = 0; v < n; ++v)
-            V(v, 2) = std::sqrt(R * R - V(v, 0) * V(v, 0) - V(v, 1) * V(v, 1)) - R;
-        V.bottomRows(5) = marks;
-        set.shapes.row(static_cast<Eigen::Index>(s)) = dataset::flatten(V);
-    }
-    set.landmarks = { { "en_r", static_cast<int>(n) }, { "en_l", static_cast<int>(n) + 1 }, { "prn", static_cast<int>(n) + 2 },
-        { "ch_r", static_cast<int>(n) + 3 }, { "ch_l", static_cast<int>(n) + 4 } };
-    return set;
+    return markedSet(
+        name, makeGrid(41, 41, 100, 100), static_cast<int>(radii.size()),
+        [&](int s, double x, double y) {
+            const double R = radii[static_cast<size_t>(s)];
+            return std::sqrt(R * R - x * x - y * y) - R;
+        },
+        marks);
 }
 
 } // namespace
