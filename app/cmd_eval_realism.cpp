@@ -31,6 +31,12 @@ nlohmann::json asymmetryJson(const evaluation::Asymmetry& a)
     return { { "measured", a.measured }, { "share", a.share }, { "paired_vertices", a.pairedVertices }, { "message", a.message } };
 }
 
+nlohmann::json proportionsJson(const evaluation::Proportions& p)
+{
+    return { { "measured", p.measured }, { "message", p.message }, { "ex_ex_mm", p.biocular }, { "eyes_sn_mm", p.eyesToSn },
+        { "eyes_ch_mm", p.eyesToMouth } };
+}
+
 void printAsymmetry(const char* label, const evaluation::Asymmetry& a)
 {
     std::cout << std::left << std::setw(20) << label << std::right;
@@ -100,6 +106,18 @@ void runEvalRealism(const EvalRealismCommand& c)
     for (const auto& [name, sd] : { std::pair { "data", r.dataPlacement }, std::pair { "reference", r.referencePlacement } })
         std::cout << std::left << std::setw(20) << name << std::right << std::setw(8) << sd.x() << std::setw(8) << sd.y() << std::setw(8)
                   << sd.z() << "\n";
+    std::cout << "proportions of each mean face: heights along up from the eye corners' mean, mm and over ex-ex\n";
+    std::cout << std::left << std::setw(20) << "set" << std::right << std::setw(10) << "ex-ex" << std::setw(10) << "eyes-sn" << std::setw(8)
+              << "/ex-ex" << std::setw(10) << "eyes-ch" << std::setw(8) << "/ex-ex"
+              << "\n";
+    for (const auto& [name, p] : { std::pair { "data", &r.dataProportions }, std::pair { "reference", &r.referenceProportions } }) {
+        std::cout << std::left << std::setw(20) << name << std::right;
+        if (!p->measured)
+            std::cout << "  not measured: " << p->message << "\n";
+        else
+            std::cout << std::setw(10) << p->biocular << std::setw(10) << p->eyesToSn << std::setw(8) << p->eyesToSn / p->biocular
+                      << std::setw(10) << p->eyesToMouth << std::setw(8) << p->eyesToMouth / p->biocular << "\n";
+    }
 
     if (!c.json.empty()) {
         nlohmann::json distances = nlohmann::json::array();
@@ -123,6 +141,7 @@ void runEvalRealism(const EvalRealismCommand& c)
                 { { "data_central", spectrumJson(r.dataCentral) }, { "reference_central", spectrumJson(r.referenceCentral) },
                     { "data_skin", spectrumJson(r.dataSkin) }, { "reference_skin", spectrumJson(r.referenceSkin) } } },
             { "asymmetry", { { "data", asymmetryJson(r.dataAsymmetry) }, { "reference", asymmetryJson(r.referenceAsymmetry) } } },
+            { "proportions", { { "data", proportionsJson(r.dataProportions) }, { "reference", proportionsJson(r.referenceProportions) } } },
             { "placement_sd_mm",
                 { { "data", { r.dataPlacement.x(), r.dataPlacement.y(), r.dataPlacement.z() } },
                     { "reference", { r.referencePlacement.x(), r.referencePlacement.y(), r.referencePlacement.z() } } } } };
@@ -142,8 +161,9 @@ void addEvalRealismCommand(CLI::App& eval)
                 "percentile, max; also per region: eyes, brows, nose, mouth, chin), how much the two mean faces bend there and\n"
                 "how their bending differs (mean curvature) and varies from face to face, and for each set the number of PCA modes\n"
                 "holding 90, 95 and 99% of the shape variance (central region area-weighted, and the whole skin) and the\n"
-                "antisymmetric share of that variance over the central region, and how far each set's faces move in their frame\n"
-                "(the SD of their landmarks' centroid). Every sample of both datasets is used. --json writes the "
+                "antisymmetric share of that variance over the central region, how far each set's faces move in their frame\n"
+                "(the SD of their landmarks' centroid), and where each mean face has its eyes between sn and the mouth's corners. Every "
+                "sample of both datasets is used. --json writes the "
                 "same figures and each spectrum (docs/realism.md).");
     cmd->add_option("dataset", c->dataset, "Dataset folder to measure (e.g. facesketch synth)")->required();
     cmd->add_option("--reference", c->reference, "Reference dataset folder (e.g. an ICT import)")->required();

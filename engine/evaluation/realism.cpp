@@ -243,6 +243,9 @@ FaceSet loadFaceSet(const dataset::Dataset& ds)
     for (const auto& [name, v] : m.landmarks)
         if (skin->contains(v))
             set.landmarks[name] = v - skin->begin;
+    // The manifest validated the axis ("+y", "-z", ...).
+    set.up = Eigen::Vector3d::Zero();
+    set.up(m.up[1] - 'x') = m.up[0] == '-' ? -1.0 : 1.0;
     return set;
 }
 
@@ -382,6 +385,27 @@ Eigen::Vector3d placementSpread(const FaceSet& set, const std::vector<std::strin
     centroids /= static_cast<double>(landmarks.size());
     const Eigen::MatrixXd centred = centroids.rowwise() - centroids.colwise().mean();
     return (centred.colwise().squaredNorm() / static_cast<double>(n - 1)).cwiseSqrt().transpose();
+}
+
+Proportions faceProportions(const FaceSet& set)
+{
+    Proportions p;
+    const Eigen::RowVectorXd mean = set.shapes.colwise().mean();
+    std::map<std::string, Eigen::Vector3d> at;
+    for (const char* name : { "en_l", "en_r", "ex_l", "ex_r", "sn", "ch_l", "ch_r" }) {
+        const auto it = set.landmarks.find(name);
+        if (it == set.landmarks.end()) {
+            p.message = set.name + ": no landmark " + name;
+            return p;
+        }
+        at[name] = mean.segment<3>(3 * it->second).transpose();
+    }
+    const Eigen::Vector3d eyes = (at["en_l"] + at["en_r"] + at["ex_l"] + at["ex_r"]) / 4;
+    p.biocular = (at["ex_l"] - at["ex_r"]).norm();
+    p.eyesToSn = (eyes - at["sn"]).dot(set.up);
+    p.eyesToMouth = (eyes - (at["ch_l"] + at["ch_r"]) / 2).dot(set.up);
+    p.measured = true;
+    return p;
 }
 
 Spectrum shapeSpectrum(const Eigen::MatrixXd& shapes, const Eigen::VectorXd& weights)
@@ -531,6 +555,8 @@ RealismReport evaluateRealism(const FaceSet& data, const FaceSet& reference, con
     report.referenceAsymmetry = antisymmetricShare(reference, centralAreas(reference, refOwner));
     report.dataPlacement = placementSpread(data, report.landmarks);
     report.referencePlacement = placementSpread(reference, report.landmarks);
+    report.dataProportions = faceProportions(data);
+    report.referenceProportions = faceProportions(reference);
     return report;
 }
 

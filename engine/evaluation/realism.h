@@ -84,6 +84,16 @@
 // smoothed away), so compare sets of similar resolution, or read the figures beside those of a
 // reference against its own import at the data's resolution (docs/realism.md).
 //
+// Proportions. Where the eyes sit between the brow and the mouth, which neither measure above
+// sees: the surfaces slide along one another under a nearest-surface distance, and the
+// similarity spreads a misplaced feature over every landmark. On each set's own mean face (no
+// alignment), heights along the dataset's up axis from the mean of the four eye corners (en and
+// ex of both eyes) down to sn and to the mean of the mouth's corners (ch), each also over the
+// biocular width ex-ex. Corners of the skin's openings and the nose's base are the landmarks
+// least open to convention (ICT-FaceKit's n is a point on the bridge, not Farkas' nasion;
+// docs/realism.md), so no other landmark enters. Until v21 the built-in faces had the mouth's
+// corners 0.64 ex-ex below the eyes' and ICT-FaceKit's mean face 0.77.
+//
 // Units: everything in mm (a manifest in cm or m is scaled on loading), curvature in 1/m.
 
 #include "core/mesh.h"
@@ -98,10 +108,11 @@ namespace facesketch::evaluation {
 
 /// The skin of every sample of one dataset, in mm.
 struct FaceSet {
-    std::string name;                     ///< for messages (the dataset folder)
-    Triangles triangles;                  ///< #F by 3, into the skin's vertices (0-based)
-    std::map<std::string, int> landmarks; ///< name -> skin vertex
-    Eigen::MatrixXd shapes;               ///< #samples by 3#V, rows (x0, y0, z0, x1, ...), mm
+    std::string name;                              ///< for messages (the dataset folder)
+    Triangles triangles;                           ///< #F by 3, into the skin's vertices (0-based)
+    std::map<std::string, int> landmarks;          ///< name -> skin vertex
+    Eigen::MatrixXd shapes;                        ///< #samples by 3#V, rows (x0, y0, z0, x1, ...), mm
+    Eigen::Vector3d up = Eigen::Vector3d::UnitY(); ///< the manifest's up axis, a unit vector
 };
 
 /// The skin component of every sample of `dataset` (train, contour, test, in manifest order),
@@ -148,6 +159,15 @@ struct Bending {
     double dataSpread = 0.0, referenceSpread = 0.0; ///< face-to-face standard deviation of H, pooled over the part
 };
 
+/// Proportions (above) of one set's mean face.
+struct Proportions {
+    bool measured = false; ///< false when a landmark is missing (message names it)
+    std::string message;
+    double biocular = 0.0;    ///< ex-ex, mm
+    double eyesToSn = 0.0;    ///< mm along up, from the eye corners' mean down to sn
+    double eyesToMouth = 0.0; ///< mm along up, down to the mouth corners' mean
+};
+
 struct RealismReport {
     std::vector<std::string> landmarks;         ///< the shared central landmarks the alignment used
     double alignmentScale = 1.0;                ///< the similarity's scale, data to reference
@@ -164,6 +184,7 @@ struct RealismReport {
     Asymmetry dataAsymmetry, referenceAsymmetry; ///< over each set's central region
     /// Placement (above): SD over faces of the shared central landmarks' centroid, x / y / z mm.
     Eigen::Vector3d dataPlacement = Eigen::Vector3d::Zero(), referencePlacement = Eigen::Vector3d::Zero();
+    Proportions dataProportions, referenceProportions;
 };
 
 /// The measures above, `data` against `reference`. Throws Error naming both sets if they share
@@ -182,6 +203,10 @@ Spectrum shapeSpectrum(const Eigen::MatrixXd& shapes, const Eigen::VectorXd& wei
 /// centroid of `landmarks`, per axis, mm. Throws Error naming the set and the landmark if one is
 /// not in the set, and for no landmark or fewer than 2 samples.
 Eigen::Vector3d placementSpread(const FaceSet& set, const std::vector<std::string>& landmarks);
+
+/// Proportions (above) of `set`'s mean face. A missing landmark (en_l, en_r, ex_l, ex_r, sn,
+/// ch_l, ch_r) is not an error but Proportions::measured false, naming it.
+Proportions faceProportions(const FaceSet& set);
 
 /// The antisymmetric share of `set`'s variation (above), each vertex weighted by `weights` (#V
 /// non-negative values; 0 leaves a vertex out). Throws Error for a weight count other than #V,

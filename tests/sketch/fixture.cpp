@@ -10,9 +10,10 @@
 
 namespace facesketch::test {
 
-const SketchWorld& sketchWorld()
+const SketchWorld& sketchWorld(std::uint64_t seed)
 {
-    static std::unique_ptr<SketchWorld> world;
+    static std::map<std::uint64_t, std::unique_ptr<SketchWorld>> worlds;
+    std::unique_ptr<SketchWorld>& world = worlds[seed];
     if (world)
         return *world;
     world = std::make_unique<SketchWorld>();
@@ -20,8 +21,9 @@ const SketchWorld& sketchWorld()
     dataset::SynthOptions synth;
     synth.identities = 40;
     synth.resolution = dataset::Resolution::Low;
-    dataset::writeSynthDataset(dir / "faces", synth);
-    const dataset::Dataset d = dataset::openDataset(dir / "faces");
+    synth.seed = seed;
+    dataset::writeSynthDataset(dir / ("faces-" + std::to_string(seed)), synth);
+    const dataset::Dataset d = dataset::openDataset(dir / ("faces-" + std::to_string(seed)));
     world->manifest = d.manifest;
     const dataset::Component* skin = d.manifest.component("skin");
     REQUIRE(skin);

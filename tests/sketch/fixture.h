@@ -1,12 +1,14 @@
 #pragma once
 // A small synthetic world for the stroke-reading tests: a low-resolution synthetic dataset,
 // a face model trained on its train faces, the contour-role faces as candidate faces, the
-// skin's vertex flags and labelled contours in the model's numbering. Built once per process
-// (ctest runs each test case in its own process).
+// skin's vertex flags and labelled contours in the model's numbering. Built once per process and
+// seed (ctest runs each test case in its own process); seed 1 unless a test asks for another
+// draw of faces.
 
 #include "dataset/manifest.h"
 #include "stats/face_model.h"
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -23,6 +25,6 @@ struct SketchWorld {
     Mesh mean;                                        ///< the model's mean face
 };
 
-const SketchWorld& sketchWorld();
+const SketchWorld& sketchWorld(std::uint64_t seed = 1);
 
 } // namespace facesketch::test

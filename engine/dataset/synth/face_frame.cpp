@@ -110,12 +110,23 @@ void placeEyes(Frame& f)
 
 } // namespace
 
+// How much lower than half the brow's height above the canthal line n sits (v21), which moves
+// the nose, mouth and chin down from the eyes by as much (n-sn, n-gn and sn-sto are Farkas norms
+// and stay). Until v20 n sat at half the brow's height, 13.6 mm above the mean face's eye corners,
+// and the eye corners 38.8 mm above sn and 57.4 mm above the mouth's: the mid-face 16% short for
+// the eyes' width. ICT-FaceKit's mean face has 45.4 and 68.5 mm there (ex-ex 89.5 in both), and
+// the mean of the 68 landmarks of real photographs used for face alignment puts the mouth's
+// corners 0.78 ex-ex below the eyes' (ours 0.64). 6 mm puts the eyes 44.7 mm above sn and n
+// 7.6 mm above them, between the lash line and the lid's crease as on real faces
+// (docs/realism.md, "Now (6 December, v21)").
+constexpr double kNasionLowering = 6.0;
+
 Frame makeFrame(const FaceParams& p)
 {
     Frame f;
     f.p = p;
     f.zf = p.faceDepth;
-    f.yN = 0.5 * p.browHeight;
+    f.yN = 0.5 * p.browHeight - kNasionLowering;
     // sn stands on the subnasal ridge (face_frame.h), as far in front of where v19 put it as the
     // ridge is high there; the profile's knot at sn stays where v19 put it (below).
     const double zSnBase = f.zf + 1.0;
@@ -133,15 +144,18 @@ Frame makeFrame(const FaceParams& p)
     f.fold = nasolabialCurve(f);
     const double slope = p.foreheadSlope;
 
+    // The glabella and the forehead above it stay where they were with n at half the brow's
+    // height (until v21): they belong to the brow, which stays put over the eyes.
+    f.yG = f.yN + kNasionLowering + 11;
     // Midline profile without nose, lips and chin boss: (y, z) pairs top to bottom.
     const std::vector<std::pair<double, double>> profile = {
         // The forehead knots were moved forward (by 16, 11 and 5 mm) towards the ICT-FaceKit
         // mean face (issue 16, docs/realism.md "Calibration").
-        { f.yN + 100, f.zf - 33 - 0.6 * slope },
-        { f.yN + 72, f.zf - 10 - 0.4 * slope },
-        { f.yN + 45, f.zf - 0.5 - 0.2 * slope },
-        { f.yN + 22, f.zf - 0.5 + 0.3 * p.nasionDepth },
-        { f.yN + 11, f.zf + p.nasionDepth },
+        { f.yG + 89, f.zf - 33 - 0.6 * slope },
+        { f.yG + 61, f.zf - 10 - 0.4 * slope },
+        { f.yG + 34, f.zf - 0.5 - 0.2 * slope },
+        { f.yG + 11, f.zf - 0.5 + 0.3 * p.nasionDepth },
+        { f.yG, f.zf + p.nasionDepth },
         { f.yN, f.zf },
         { lerp(f.yN, f.ySn, 0.5), f.zf - 1.5 },
         // At v19's depth: the knot's elevation, atan2(y, z), then stays too. With the knot at sn's
@@ -190,8 +204,8 @@ Frame makeFrame(const FaceParams& p)
     // the nose or the chin, so short faces keep every grid row distinct.
     f.phiLs = solvePhiBase(f, std::min(f.ySto + p.upperVermilion, lerp(f.ySto, f.ySn, 0.6)), f.phiSto, f.phiSn);
     f.phiLi = solvePhiBase(f, std::max(f.ySto - p.lowerVermilion, lerp(f.ySto, f.yPg, 0.6)), f.phiPg, f.phiSto);
-    f.phiBrow = solvePhiBase(f, p.browHeight + 0.5 * f.yN, f.phiN, 1.2);
-    f.phiTopFront = solvePhiBase(f, f.yN + 62, f.phiBrow, 1.3);
+    f.phiBrow = solvePhiBase(f, p.browHeight + 0.5 * (f.yN + kNasionLowering), f.phiN, 1.2);
+    f.phiTopFront = solvePhiBase(f, f.yN + kNasionLowering + 62, f.phiBrow, 1.3);
     f.phiBottomFront = std::atan2(f.yGn - 8, f.zGn - 26);
     f.rEye = f.zf - 8;
     f.rMouth = f.zSto;
@@ -209,9 +223,10 @@ Frame makeFrame(const FaceParams& p)
     // the profile's knots at n, sn, pg and gn until the finished skin passes through their
     // targets exactly; the nose height follows.
     const std::pair<double, double> exact[] = { { f.yN, f.zf }, { f.ySn, f.zSn }, { f.yPg, f.zPg }, { f.yGn, f.zGn } };
-    // Ten passes: the shape fields and the face-wide factors (face_params.h) tilt the midline;
-    // three left 0.4 mm, six 0.13 mm once the factors came (v15), ten 0.016 mm.
-    for (int pass = 0; pass < 10; ++pass) {
+    // Sixteen passes: the shape fields and the face-wide factors (face_params.h) tilt the
+    // midline; three left 0.4 mm, six 0.13 mm once the factors came (v15), ten 0.016 mm, and
+    // with v21's nose, mouth and chin lower under the eyes ten left 0.19 mm, sixteen 0.027.
+    for (int pass = 0; pass < 16; ++pass) {
         for (const auto& [y, z] : exact) {
             const double phi = std::atan2(y, z);
             const size_t k = static_cast<size_t>(std::min_element(f.depth.x.begin(), f.depth.x.end(), [&](double a, double b) {

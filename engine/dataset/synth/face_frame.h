@@ -141,6 +141,7 @@ struct Frame {
     FaceParams p;
     Monotone depth; // horizontal depth of the midline, as a function of phi
     Monotone width; // half width at theta = 90 degrees, as a function of phi
+    double yG = 19; // the glabella's height, where the profile's brow knot is (v21: 17 mm above n)
     double zf = 88, yN = 8, ySn = -46, zSn = 89, yPrn = -42, zPrn = 109, ySto = -68, zSto = 88, yGn = -112, zGn = 75, yPg = -100, zPg = 86;
     double phiTopFront = 0.8, phiBrow = 0.2, phiN = 0.1, phiPrn = -0.4, phiSn = -0.5, phiLs = -0.6, phiSto = -0.65, phiLi = -0.7,
            phiPg = -0.8, phiGn = -0.9, phiBottomFront = -1.3;

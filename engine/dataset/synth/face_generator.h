@@ -114,10 +114,11 @@ FaceTopology buildFaceTopology(Resolution resolution);
 /// and 1.2 mm. That drift held half of the set's variance in its first mode, so the spectrum's
 /// 15 / 35 modes (issue 16) were reached only with lumpier shape fields. Now each face is moved
 /// towards kLandmarkCentre (mm; the mean of that centroid over seed 1's 250 high faces before the
-/// move, v20; until v19 v18's, 0.3 mm further back and 0.3 lower, before sn moved 3.9 mm forward)
+/// move, v21; v20's was 3.7 mm higher and 2.3 further forward, before the nose, mouth and chin
+/// moved 6 mm lower under the eyes; until v19 v18's, 0.3 mm further back and 0.3 lower)
 /// and keeps kDriftKept of its offset from it along x, y and z: 1.1 and 1.2 mm SD, as in
 /// ICT-FaceKit (docs/realism.md, "v19"). Each pose moves by its neutral face's move.
-inline constexpr double kLandmarkCentre[3] = { 0.0, -18.88, 75.52 };
+inline constexpr double kLandmarkCentre[3] = { 0.0, -22.57, 73.2 };
 inline constexpr double kDriftKept[3] = { 1.0, 0.5, 0.35 };
 
 /// The vertices of one face in one pose: #V by 3, mm, in the topology's vertex order, placed by

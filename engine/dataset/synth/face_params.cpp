@@ -46,14 +46,17 @@ double normDraw(const Norm& n, bool female, double g, double z)
 // from the midline out (shapeField): the smooth part of the ICT-FaceKit mean face the
 // parameters cannot reach, fitted with the parameter means (sampleFaceParams, "ICT"), and
 // refitted alone in v14 with the arched brow ridge and the temporal hollow (face_shape.cpp).
+// v21 refitted the rows from the brows to the chin with the lower nose, mouth and chin
+// (sampleFaceParams); v20's were 3.4 2.1 2.0 -0.1, 7.8 -10.9 -1.4 0.7, 1.3 3.1 -2.5 1.2,
+// 11.8 -1.8 1.2 -0.2 and 2.1 -1.7 4.8 0.3.
 constexpr double kFieldMeans[28] = {
-    0.6, 0.6, -2.2, -2.8,  // forehead
-    3.4, 2.1, 2.0, -0.1,   // brows
-    7.8, -10.9, -1.4, 0.7, // eyes
-    1.3, 3.1, -2.5, 1.2,   // nose, upper cheeks
-    11.8, -1.8, 1.2, -0.2, // mouth, lower cheeks
-    2.1, -1.7, 4.8, 0.3,   // chin, jaw
-    -8.1, 0.3, 0.4, 0.6,   // under the chin
+    0.6, 0.6, -2.2, -2.8,   // forehead
+    2.75, 2.1, 2.0, 1.2,    // brows
+    8.45, -13.5, -0.1, 0.7, // eyes
+    3.25, 1.8, -3.15, 1.85, // nose, upper cheeks
+    14.4, -3.1, 1.85, -0.2, // mouth, lower cheeks
+    0.15, 0.25, 7.4, 2.25,  // chin, jaw
+    -8.1, 0.3, 0.4, 0.6,    // under the chin
 };
 
 // Face-wide factors (v15): every parameter drawn below and every symmetric shape field shares
@@ -154,14 +157,20 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
     // the lips broke the HMM's reading of the upper lip). The Farkas draws above are
     // anthropometric norms and were left alone.
     // v20: 3.9 mm less, as sn moved forward onto the subnasal ridge (face_frame.h) and prn stayed.
-    p.tipProtrusion = n(18.6 - 1.5 * s, 1.8); // ICT: 20.5 before, then 22.5 until v19
-    p.tipRise = n(8.5 - 1.5 * aging, 1.2);    // ICT: 4.5 before (prn was 7 mm too near sn)
-    p.dorsumHump = n(0.5 - 0.5 * s, 0.9);     // ICT: 0.6, then 0.8, then 0.6 before
+    // v21: with the nose, mouth and chin 6 mm lower under the eyes (kNasionLowering, face_frame.cpp)
+    // nine of these means and 16 of the mean fields were refitted to the mean-face distance by
+    // coordinate descent (120 faces, steps of 0.5 then 0.25 SD, each move charged 0.005 mm^2
+    // per SD^2; two rounds; docs/realism.md "v21"); their v20 values close each comment. The
+    // first round also set the eyes 0.6 mm less deep (eyeSet), which turned the upper lids'
+    // triangles over in the eye poses of many faces, so eyeSet stayed.
+    p.tipProtrusion = n(20.4 - 1.5 * s, 1.8); // ICT: 20.5 before, then 22.5 until v19, 18.6 in v20
+    p.tipRise = n(10.0 - 1.5 * aging, 1.2);   // ICT: 4.5 before (prn was 7 mm too near sn), 8.5 until v20
+    p.dorsumHump = n(1.18 - 0.5 * s, 0.9);    // ICT: 0.6, then 0.8, then 0.6, then 0.5 before
     p.bridgeWidth = n(7.4 - 0.5 * s, 0.6);    // ICT: 6.5, then 7.2, then 7.3 before
     p.tipWidth = n(7.0 - 0.6 * s, 0.7);       // ICT: 8.8, then 5.8, then 6.3, then 6.9 before
     p.alaSize = n(5.9 - 0.5 * s, 0.5);        // ICT: 7.0, then 6.0, then 5.7 before
     p.nostrilSize = n(4.32 - 0.3 * s, 0.4);   // ICT: 3.6, then 3.7, then 4.14 before
-    p.nasionDepth = n(-0.5 - 0.5 * s, 1.2);   // ICT: 3.0, then 0.4, then -0.3 before
+    p.nasionDepth = n(-1.1 - 0.5 * s, 1.2);   // ICT: 3.0, then 0.4, then -0.3, then -0.5 before
 
     p.upperVermilion = n(10.4 - 0.4 * s - 1.5 * aging, 1.2); // ICT: 8.7 before
     p.lowerVermilion = n(10.2 - 0.5 * s - 1.5 * aging, 1.3); // ICT: 10.0 before
@@ -175,10 +184,10 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
     p.fissureHeight = n(10.4 - 1.2 * aging, 0.8); // ICT: 10.8, then 11.1, then 10.6 before
     p.canthalTilt = n(4.8 + 0.5 * s, 1.0);        // ICT: 2.0, then 3.8, then 4.6 before
     p.eyeSet = n(3.4, 1.2);                       // ICT: 6.5, then 3.1, then 3.3 before
-    p.browRidge = n(3.8 - 2.0 * s, 0.9);          // ICT: 4.0, then 3.4, then 3.7 before
-    p.browHeight = n(31.5 + 2.0 * s, 2.0);        // ICT: 17.0, then 25.0, then 30.0, then 31.2 before
+    p.browRidge = n(4.47 - 2.0 * s, 0.9);         // ICT: 4.0, then 3.4, then 3.7, then 3.8 before
+    p.browHeight = n(30.5 + 2.0 * s, 2.0);        // ICT: 17.0, then 25.0, then 30.0, then 31.2, then 31.5 before
 
-    p.faceDepth = n(85.0 - 3.0 * s, 3.0) + 1.5 * g;        // ICT: 88.0, then 86.2, then 85.2 before
+    p.faceDepth = n(83.5 - 3.0 * s, 3.0) + 1.5 * g;        // ICT: 88.0, then 86.2, then 85.2, then 85.0 before
     p.foreheadSlope = n(14.0 - 4.0 * s, 4.0);              // ICT: 8.0, then 10.8, then 13.0 before
     p.headBreadth = n(156.7 - 7.0 * s, 5.0) + 2.0 * g;     // ICT: 154.0, then 154.4, then 155.6 before
     p.cheekboneWidth = n(138.7 - 8.2 * s, 5.3) + 2.0 * g;  // ICT: 139.1, then 139.0, then 138.8 before
@@ -186,9 +195,9 @@ FaceParams sampleFaceParams(std::uint64_t seed, int index)
     p.cheekFullness = n(2.2 - 1.5 * aging + 0.5 * s, 1.0); // ICT: 2.5, then 2.3 before
     p.jawWidth = n(108.2 - 7.4 * s, 5.5) + 2.0 * g;        // ICT: 104.0, then 107.1, then 107.9 before
     p.jawAngle = n(-0.37 - 0.5 * s, 0.4);                  // ICT: 0.3, then 0.0, then -0.22 before
-    p.chinProjection = n(0.2 - 1.0 * s, 3.0);              // ICT: -2.0, then 0.2, then 0.1 before
+    p.chinProjection = n(-1.3 - 1.0 * s, 3.0);             // ICT: -2.0, then 0.2, then 0.1, then 0.2 before
     p.chinWidth = n(13.9 - 1.5 * s, 1.8);                  // ICT: 15.0, then 14.7, then 14.2 before
-    p.chinHeight = n(4.6 - 0.8 * s, 0.8);                  // ICT: 2.5, then 3.3, then 4.2 before
+    p.chinHeight = n(4.4 - 0.8 * s, 0.8);                  // ICT: 2.5, then 3.3, then 4.2, then 4.6 before
     p.neckWidth = n(113.7 - 15.0 * s, 6.0);                // ICT: 115.0, then 114.8, then 114.0 before
 
     // Fine detail: a few low bumps spread over the face, so no two faces are smooth copies.

@@ -180,7 +180,7 @@ double bone(const Frame& f, double theta, double phi, double X, double Y, const 
     const double browLateral = smoothstep(4, 14, ax) * (1 - smoothstep(p.exex / 2, p.exex / 2 + 18, ax));
     const double browCrest = p.browHeight - 5 - kBrowArch * sq((ax - f.xEye) / 20);
     r += p.browRidge * std::exp(-sq((Y - browCrest) / 8)) * browLateral;
-    r += 0.35 * p.browRidge * std::exp(-sq(X / 9) - sq((Y - (f.yN + 11)) / 8));
+    r += 0.35 * p.browRidge * std::exp(-sq(X / 9) - sq((Y - f.yG) / 8));
     // Orbital socket: the face sinks around the eyeball so the lids drape over it.
     const double ds = sq((ax - f.xEye) / 21) + sq((Y - 1) / 15);
     if (ds < 1)

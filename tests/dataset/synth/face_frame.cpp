@@ -120,7 +120,8 @@ TEST_CASE("face_frame: makeFrame puts the profile landmarks and the eye and mout
     }
     std::cout << "face_frame: largest miss over 200 identities: profile " << profileMiss << " mm, en/ex " << eyeMiss << " mm, al "
               << noseMiss << " mm, ch " << mouthMiss << " mm\n";
-    // Measured at 0.016, 1e-13, 0.0097 and 0.32 mm (v15): the profile knots get ten correction passes;
+    // Measured at 0.027, 1e-13, 8e-10 and 0.08 mm (v21; v15: 0.016, 1e-13, 0.0097 and 0.32): the
+    // profile knots get sixteen correction passes;
     // the corners' azimuths are 8 fixed-point steps and then secant steps (without those the
     // lower nose's steep flank left al 0.07 mm short), and the lips' steep radius near ch leaves
     // ch furthest from converged (0.5 mm is 1% of ch-ch).
