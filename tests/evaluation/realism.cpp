@@ -588,7 +588,7 @@ TEST_CASE("realism: the built-in high faces keep issue 16's spectrum, drift in t
     // measures them: at least 15 modes for 95% of the variance and 35 for 99% (issue 16), and
     // the landmarks' centroid moving 1.1 mm up and down and 1.2 in depth (ICT-FaceKit: 1.1, 1.2;
     // v18's faces 2.3 and 3.5, which is what made the spectrum need lumpy fields; docs/realism.md
-    // "v19"). On v21: 15 modes hold 0.9530 and 35 hold 0.9900 of the variance (v20: 0.9508 and
+    // "v19"). On v21: 15 modes hold 0.9530 and 35 hold 0.98998 of the variance (v20: 0.9508 and
     // 0.9893; v19: 0.9505 and 0.9896).
     const dataset::FaceTopology t = dataset::buildFaceTopology(dataset::Resolution::High);
     const auto skin = static_cast<Eigen::Index>(t.skin.size());
