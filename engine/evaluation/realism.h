@@ -84,8 +84,8 @@
 // smoothed away), so compare sets of similar resolution, or read the figures beside those of a
 // reference against its own import at the data's resolution (docs/realism.md).
 //
-// Proportions. Where the eyes sit between the brow and the mouth, which neither measure above
-// sees: the surfaces slide along one another under a nearest-surface distance, and the
+// Proportions. How far below the eyes the nose's base and the mouth sit, which neither measure
+// above sees: the surfaces slide along one another under a nearest-surface distance, and the
 // similarity spreads a misplaced feature over every landmark. On each set's own mean face (no
 // alignment), heights along the dataset's up axis from the mean of the four eye corners (en and
 // ex of both eyes) down to sn and to the mean of the mouth's corners (ch), each also over the

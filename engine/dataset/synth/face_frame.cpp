@@ -116,9 +116,9 @@ void placeEyes(Frame& f)
 // and the eye corners 38.8 mm above sn and 57.4 mm above the mouth's: the mid-face 16% short for
 // the eyes' width. ICT-FaceKit's mean face has 45.4 and 68.5 mm there (ex-ex 89.5 in both), and
 // the mean of the 68 landmarks of real photographs used for face alignment puts the mouth's
-// corners 0.78 ex-ex below the eyes' (ours 0.64). 6 mm puts the eyes 44.7 mm above sn and n
-// 7.6 mm above them, between the lash line and the lid's crease as on real faces
-// (docs/realism.md, "Now (6 December, v21)").
+// corners 0.78 ex-ex below the eyes' (ours 0.64). With 6 mm (and v21's refitted means) the
+// mean face has its eyes 45.2 mm above sn and n 7.1 mm above them, between the lash line and the
+// lid's crease as on real faces (docs/realism.md, "Now (6 December, v21)").
 constexpr double kNasionLowering = 6.0;
 
 Frame makeFrame(const FaceParams& p)

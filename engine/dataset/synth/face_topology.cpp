@@ -72,7 +72,7 @@ Spec spec(Resolution r)
         // (docs/realism.md, curvature maps); the forehead above it is nearly flat. 6 rows from the
         // brow to n and 5 from n to the eyes since v21 (5 and 6 before): n came 6 mm nearer the
         // eyes (face_frame.cpp), and on six rows 1.7 mm apart the upper lids' triangles turned
-        // over in the eye poses of 4 of 40 faces (v20: 2, now none; docs/realism.md "v21").
+        // over in 4 eye poses of 40 faces (v20: 2 poses, now none; docs/realism.md "v21").
         return { { 9, 6, 8, 14 }, { 6, 6, 5, 9, 8, 5, 5, 5, 5, 6, 8 }, 13, 13, 25, 8, 10, 14 };
     case Resolution::Ultra:
         return { { 19, 13, 17, 30 }, { 17, 6, 13, 25, 10, 11, 10, 10, 11, 12, 17 }, 24, 25, 49, 16, 20, 28 };
