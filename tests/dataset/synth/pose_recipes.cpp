@@ -123,7 +123,9 @@ TEST_CASE("pose_recipes: every low-resolution pose of 8 faces is free of degener
     requireCleanPoses(Resolution::Low, 8);
 }
 
-TEST_CASE("pose_recipes: every high-resolution pose of a face is free of degenerate, flipped, folded and intersecting triangles")
+TEST_CASE("pose_recipes: every high-resolution pose of 6 faces is free of degenerate, flipped, folded and intersecting triangles")
 {
-    requireCleanPoses(Resolution::High, 1);
+    // 6 faces since v21 (1 before): v20's face 5 turned an upper lid's triangle over in `blink`,
+    // which one face did not show; v21's first 40 faces are all clean (docs/realism.md, "v21").
+    requireCleanPoses(Resolution::High, 6);
 }
