@@ -112,20 +112,16 @@ double measure(const Vertices& from, const Triangles& fromF, const Eigen::Vector
             central.push_back(static_cast<int>(v));
     const std::vector<char> enclosed = enclosedVertices(Mesh { from, fromF }, central, reach);
     double uncovered = 0;
+    const Mesh& m = to.mesh();
     for (size_t k = 0; k < central.size(); ++k) {
         const int v = central[k];
-        const Eigen::Vector3d p = from.row(v).transpose();
-        const registration::ClosestPoint c = to.closest(p);
+        const registration::ClosestPoint c = to.closest(from.row(v).transpose());
         if (c.onBoundary)
             uncovered += area(v);
         if (enclosed[k])
             enclosedArea += area(v);
-        const Mesh& m = to.mesh();
-        const auto corner = [&](int i) { return m.F(c.triangle, i); };
-        Eigen::Vector3d bary;
-        registration::closestPointOnTriangle(
-            p, m.V.row(corner(0)).transpose(), m.V.row(corner(1)).transpose(), m.V.row(corner(2)).transpose(), bary);
-        const double toBend = bary(0) * toH(corner(0)) + bary(1) * toH(corner(1)) + bary(2) * toH(corner(2));
+        const Eigen::Vector3d& b = c.barycentric;
+        const double toBend = b(0) * toH(m.F(c.triangle, 0)) + b(1) * toH(m.F(c.triangle, 1)) + b(2) * toH(m.F(c.triangle, 2));
         out.push_back({ c.distance, area(v), ownerGroup[static_cast<size_t>(owner[static_cast<size_t>(v)])], enclosed[k] != 0, fromH(v),
             fromH(v) - toBend });
     }

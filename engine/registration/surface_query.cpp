@@ -136,7 +136,6 @@ ClosestPoint SurfaceQuery::closest(const Eigen::Vector3d& p) const
         c0(k) = static_cast<int>(std::clamp(std::floor((p(k) - lower_(k)) / cellSize_(k)), 0.0, static_cast<double>(cells_(k) - 1)));
     ClosestPoint best;
     best.distance = std::numeric_limits<double>::infinity();
-    Eigen::Vector3d bestBary = Eigen::Vector3d::Zero();
     const double minCell = cellSize_.minCoeff();
     const int maxRing = cells_.maxCoeff();
     for (int ring = 0; ring <= maxRing; ++ring) {
@@ -169,7 +168,7 @@ ClosestPoint SurfaceQuery::closest(const Eigen::Vector3d& p) const
                             best.distance = d;
                             best.point = q;
                             best.triangle = f;
-                            bestBary = bary;
+                            best.barycentric = bary;
                         }
                     }
                 }
@@ -182,9 +181,9 @@ ClosestPoint SurfaceQuery::closest(const Eigen::Vector3d& p) const
     const int f = best.triangle;
     for (int i = 0; i < 3 && !best.onBoundary; ++i) {
         const int opposite = (i + 2) % 3; // edge (i, i+1) is opposite corner i+2
-        if (bestBary(opposite) <= eps && boundaryEdge_[static_cast<std::size_t>(f) * 3 + i])
+        if (best.barycentric(opposite) <= eps && boundaryEdge_[static_cast<std::size_t>(f) * 3 + i])
             best.onBoundary = true;
-        if (bestBary(i) >= 1.0 - eps && boundaryVertex_[static_cast<std::size_t>(mesh_.F(f, i))])
+        if (best.barycentric(i) >= 1.0 - eps && boundaryVertex_[static_cast<std::size_t>(mesh_.F(f, i))])
             best.onBoundary = true;
     }
     return best;

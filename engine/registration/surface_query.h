@@ -16,9 +16,10 @@
 namespace facesketch::registration {
 
 struct ClosestPoint {
-    Eigen::Vector3d point = Eigen::Vector3d::Zero(); ///< the nearest point of the surface
-    double distance = 0.0;                           ///< |query - point|, mesh units (mm)
-    int triangle = -1;                               ///< the triangle holding `point`
+    Eigen::Vector3d point = Eigen::Vector3d::Zero();       ///< the nearest point of the surface
+    double distance = 0.0;                                 ///< |query - point|, mesh units (mm)
+    int triangle = -1;                                     ///< the triangle holding `point`
+    Eigen::Vector3d barycentric = Eigen::Vector3d::Zero(); ///< of `point` over `triangle`'s corners (sum 1)
     /// True if `point` lies on a boundary edge or boundary vertex of the mesh (an edge with one
     /// triangle): the query is then beside the surface rather than over it, e.g. over a hole or
     /// outside a face mask.

@@ -617,9 +617,8 @@ TEST_CASE("realism: the built-in high faces keep issue 16's spectrum, drift in t
     // and the mouth's corners 0.64 below them; ICT-FaceKit's mean face has 0.51 and 0.77, the mean
     // of real photographs' 68 alignment landmarks 0.78 for the mouth (docs/realism.md "v21").
     // v21: 0.51 and 0.71.
-    for (const char* name : { "en_l", "en_r", "ex_l", "ex_r", "sn", "ch_l", "ch_r" })
-        REQUIRE(set.landmarks.count(name) == 1);
     const Proportions p = faceProportions(set);
+    INFO(p.message);
     REQUIRE(p.measured);
     INFO("eyes-sn " << p.eyesToSn / p.biocular << " ex-ex, eyes-ch " << p.eyesToMouth / p.biocular);
     CHECK(p.eyesToSn / p.biocular > 0.48);

@@ -42,6 +42,12 @@ TEST_CASE("SurfaceQuery: equals brute force on an icosphere, for points inside, 
         INFO("point " << i << " at radius " << r);
         REQUIRE(std::abs(c.distance - brute) < 1e-9);
         REQUIRE(std::abs((c.point - p).norm() - c.distance) < 1e-9);
+        // The barycentric coordinates rebuild the point from the triangle's corners.
+        Eigen::Vector3d fromCorners = Eigen::Vector3d::Zero();
+        for (int k = 0; k < 3; ++k)
+            fromCorners += c.barycentric(k) * sphere.V.row(sphere.F(c.triangle, k)).transpose();
+        REQUIRE(std::abs(c.barycentric.sum() - 1.0) < 1e-12);
+        REQUIRE((fromCorners - c.point).norm() < 1e-9);
         REQUIRE_FALSE(c.onBoundary); // a closed surface has no boundary
     }
 }

@@ -144,9 +144,10 @@ Frame makeFrame(const FaceParams& p)
     f.fold = nasolabialCurve(f);
     const double slope = p.foreheadSlope;
 
-    // The glabella and the forehead above it stay where they were with n at half the brow's
-    // height (until v21): they belong to the brow, which stays put over the eyes.
-    f.yG = f.yN + kNasionLowering + 11;
+    // The glabella, the forehead above it and the rows of both stay where they were with n at
+    // half the brow's height (until v21): they belong to the brow, which stays put over the eyes.
+    const double yHalfBrow = f.yN + kNasionLowering;
+    f.yG = yHalfBrow + 11;
     // Midline profile without nose, lips and chin boss: (y, z) pairs top to bottom.
     const std::vector<std::pair<double, double>> profile = {
         // The forehead knots were moved forward (by 16, 11 and 5 mm) towards the ICT-FaceKit
@@ -204,8 +205,8 @@ Frame makeFrame(const FaceParams& p)
     // the nose or the chin, so short faces keep every grid row distinct.
     f.phiLs = solvePhiBase(f, std::min(f.ySto + p.upperVermilion, lerp(f.ySto, f.ySn, 0.6)), f.phiSto, f.phiSn);
     f.phiLi = solvePhiBase(f, std::max(f.ySto - p.lowerVermilion, lerp(f.ySto, f.yPg, 0.6)), f.phiPg, f.phiSto);
-    f.phiBrow = solvePhiBase(f, p.browHeight + 0.5 * (f.yN + kNasionLowering), f.phiN, 1.2);
-    f.phiTopFront = solvePhiBase(f, f.yN + kNasionLowering + 62, f.phiBrow, 1.3);
+    f.phiBrow = solvePhiBase(f, p.browHeight + 0.5 * yHalfBrow, f.phiN, 1.2);
+    f.phiTopFront = solvePhiBase(f, yHalfBrow + 62, f.phiBrow, 1.3);
     f.phiBottomFront = std::atan2(f.yGn - 8, f.zGn - 26);
     f.rEye = f.zf - 8;
     f.rMouth = f.zSto;
