@@ -119,6 +119,15 @@ constexpr double kAlaAbove = 1.1;
 constexpr double kAlaBelow = 1.3;
 constexpr double kAlaHeight = 1.15;
 constexpr double kAlaRound = 0.8;
+// A nose wrinkle (disgust, anger) lifts each alar lobule by kAlaWrinkleLift mm per unit of
+// FaceActions::noseWrinkle, and its skin rides up with it (warp()): the lobule's own skin, out
+// to kAlaSlideFrom alar radii from its centre, moves the whole way and the skin round it less,
+// to nothing at kAlaSlideTo radii. Until v21 only the radial bump rose (bone()) and the skin
+// stayed, so the bump's steep upper flank passed under fixed vertices, and on the ultra grid
+// triangles at prn's height turned over in `disgust` (face 5 of the pose tests' seed; with the
+// lift halved, still two).
+constexpr double kAlaWrinkleLift = 0.6;
+constexpr double kAlaSlideFrom = 1.0, kAlaSlideTo = 2.0;
 // The lower nose's midline rises from sn to prn as 1 - u^kColumellaCurve (u: 1 at sn, 0 at prn).
 // At 1.8 (until v19) the columella left sn nearly level, rising 10 degrees, a nasolabial angle
 // near 90 degrees; at 1.2, with the subnasal ridge (face_frame.h) under it, the mean face's
@@ -165,7 +174,7 @@ double bone(const Frame& f, double theta, double phi, double X, double Y, const 
     }
     const double ra = p.alaSize * (1 + 0.04 * act.noseWrinkle);
     const double alaX = p.alal / 2 - kAlaIn * ra;
-    const double alaY = lerp(f.ySn, f.yPrn, kAlaAt) + 0.6 * act.noseWrinkle;
+    const double alaY = lerp(f.ySn, f.yPrn, kAlaAt) + kAlaWrinkleLift * act.noseWrinkle;
     const double da = sq((ax - alaX) / ra) + sq((Y - alaY) / ((Y < alaY ? kAlaBelow : kAlaAbove) * ra));
     const double ala = da < 1 ? kAlaHeight * (0.34 * f.noseTip + 2.0) * std::pow(1 - da, kAlaRound) : 0;
     r += smax(body, ala, 6.0);
@@ -462,6 +471,16 @@ ChartPoint warp(const Frame& f, double theta0, double phi0, int slit, bool eyeRo
     const double lateral = 1 - smoothstep(f.thetaEx + 5 / R, f.thetaEx + 30 / R, std::abs(theta0));
     dPhi += lift / R * vertical * lateral;
     dTheta -= sign * act.browLower * 0.25 / R * vertical * lateral * smoothstep(0, f.thetaEn, std::abs(theta0));
+
+    // The alar lobules rise with a nose wrinkle (kAlaWrinkleLift), their skin with them: mm over
+    // the chart's local mm per radian of elevation (Y = rho tan(phi)).
+    if (act.noseWrinkle != 0) {
+        const double rho0 = rhoBase(f, theta0, phi0);
+        const double X0 = rho0 * std::sin(theta0), Y0 = rho0 * std::tan(phi0);
+        const double da = std::hypot(
+            (std::abs(X0) - (p.alal / 2 - kAlaIn * p.alaSize)) / p.alaSize, (Y0 - lerp(f.ySn, f.yPrn, kAlaAt)) / (kAlaAbove * p.alaSize));
+        dPhi += kAlaWrinkleLift * act.noseWrinkle * sq(std::cos(phi0)) / rho0 * fall((da - kAlaSlideFrom) / (kAlaSlideTo - kAlaSlideFrom));
+    }
 
     // Mouth. Positions in mm relative to the stomion at the neutral face.
     const double Rm = f.mouthScale;
