@@ -106,9 +106,13 @@ void addTrainCommand(CLI::App& root)
     cmd->add_option("--folds", f.folds, "Cross-validation folds for choosing the number of components")
         ->capture_default_str()
         ->check(CLI::Range(2, 100));
-    cmd->add_option("--cleanup-dim", f.cleanUpDim, "Latent dimension of each segment's clean-up PPCA")
+    cmd->add_option("--cleanup-dim", f.cleanUpDim, "Latent dimension of each segment's clean-up PPCA, at most")
         ->capture_default_str()
         ->check(CLI::Range(1, 10000));
+    cmd->add_option("--cleanup-variance", f.cleanUpVariance,
+           "Each segment's clean-up keeps the fewest latent dimensions holding this fraction of its variance (1: --cleanup-dim everywhere)")
+        ->capture_default_str()
+        ->check(CLI::Range(1e-6, 1.0));
     cmd->add_option("--correlation-components", f.correlationComponents, "Components of the correlation mixture")
         ->capture_default_str()
         ->check(CLI::Range(1, 100));

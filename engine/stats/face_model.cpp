@@ -45,6 +45,8 @@ FaceModel trainFaceModel(
         fail("trainFaceModel: faces have ", faces.cols(), " columns, expected 3 per vertex");
     if (options.folds < 2 || options.folds > n)
         fail("trainFaceModel: folds = ", options.folds, " outside [2, ", n, "]");
+    if (!(options.cleanUpVariance > 0 && options.cleanUpVariance <= 1))
+        fail("trainFaceModel: cleanUpVariance = ", options.cleanUpVariance, " outside (0, 1]");
     auto report = [&](const std::string& what, double fraction) {
         if (progress)
             progress(what, fraction);
@@ -82,7 +84,10 @@ FaceModel trainFaceModel(
         SegmentModel sm;
         sm.mixture = fit.model;
         sm.logLikelihood = fit.logLikelihood.back() / static_cast<double>(n);
-        sm.cleanUp = fitPpca(Xs, static_cast<int>(std::clamp<Eigen::Index>(options.cleanUpDim, 1, std::min(d - 1, n - 2))));
+        int cleanUpDim = static_cast<int>(std::clamp<Eigen::Index>(options.cleanUpDim, 1, std::min(d - 1, n - 2)));
+        if (options.cleanUpVariance < 1)
+            cleanUpDim = std::clamp(dimensionHolding(Xs, options.cleanUpVariance), 1, cleanUpDim);
+        sm.cleanUp = fitPpca(Xs, cleanUpDim);
         model.segments.push_back(std::move(sm));
         report("segment " + std::to_string(s + 1) + " of " + std::to_string(segments), (s + 1.0) / (segments + 1.0));
     }

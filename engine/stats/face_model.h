@@ -56,10 +56,20 @@ struct FaceModelOptions {
     /// dimension and to the smallest cross-validation training set; candidates K that would
     /// leave a component fewer than q + 2 faces of that set are skipped.
     int latentDim = 8;
-    /// Latent dimension of each segment's clean-up PPCA (clamped to n - 2, leaving variance for
-    /// sigma^2). The joint
-    /// correlation can only express what the clean-up spaces hold, so this is generous.
+    /// Latent dimension of each segment's clean-up PPCA at most (clamped to n - 2, leaving
+    /// variance for sigma^2). The joint correlation can only express what the clean-up spaces
+    /// hold, so this is generous.
     int cleanUpDim = 60;
+    /// Each segment's clean-up keeps the fewest latent dimensions that hold this fraction of
+    /// the segment's training variance (stats/ppca.h dimensionHolding), at most cleanUpDim; 1
+    /// keeps cleanUpDim everywhere (the rule until 6 December). The last 0.05% of a segment's
+    /// variance is spread over many directions that few training faces take, and a model that
+    /// keeps them has freedom to fit a stroke's noise with. On the synthetic high set (20 to 60
+    /// latents per segment instead of 60) strokes read 0.01-0.02 better in every view and a
+    /// face comes back from 2% of its vertices a sixth better; on an ICT-FaceKit import (42 to
+    /// 60) little changes. A fixed 40 everywhere broke the import's one-region inference
+    /// (docs/face-model.md, "The clean-up dimension by variance").
+    double cleanUpVariance = 0.9995;
     /// Components and latent dimension of the correlation mixture on the concatenated latents
     /// (the dimension is clamped to n - 2): the latent dimension of the joint whole-face model.
     int correlationComponents = 1;

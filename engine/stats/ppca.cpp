@@ -163,6 +163,32 @@ Ppca fitPpca(const Eigen::MatrixXd& X, int q)
     return X.cols() > X.rows() ? fitPpcaDual(X, q) : fitPpcaPrimal(X, q);
 }
 
+int dimensionHolding(const Eigen::MatrixXd& X, double fraction)
+{
+    if (!(fraction > 0 && fraction <= 1))
+        fail("dimensionHolding: fraction ", fraction, " is not in (0, 1]");
+    if (X.rows() < 2)
+        fail("dimensionHolding: ", X.rows(), " samples; at least 2 are needed");
+    requireFinite(X, "dimensionHolding: X");
+    // The non-zero eigenvalues of X_c^T X_c and X_c X_c^T are the same.
+    const Eigen::MatrixXd Xc = X.rowwise() - X.colwise().mean();
+    const Eigen::MatrixXd G = X.cols() > X.rows() ? Eigen::MatrixXd(Xc * Xc.transpose()) : Eigen::MatrixXd(Xc.transpose() * Xc);
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(G, Eigen::EigenvaluesOnly);
+    if (eig.info() != Eigen::Success)
+        fail("dimensionHolding: the eigen-decomposition did not converge");
+    const Eigen::VectorXd values = eig.eigenvalues().reverse().cwiseMax(0.0); // decreasing
+    const double total = values.sum();
+    if (total <= 0)
+        return 0;
+    // The relative slack keeps rounding from counting the zero eigenvalues past the rank at 1.
+    const double wanted = fraction * total * (1 - 1e-12);
+    double held = 0;
+    int q = 0;
+    while (q < values.size() && held < wanted)
+        held += values(q++);
+    return q;
+}
+
 Eigen::MatrixXd latent(const Ppca& model, const Eigen::MatrixXd& T)
 {
     checkModel(model, T.cols(), "latent");

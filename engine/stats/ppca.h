@@ -96,6 +96,15 @@ Ppca fitPpcaDual(const Eigen::MatrixXd& X, int q);
 /// a NaN or infinity in X, or a q outside [1, d).
 Ppca fitPpca(const Eigen::MatrixXd& X, int q);
 
+/// The fewest principal directions of the samples that hold at least `fraction` of their
+/// variance (the sum of the leading eigenvalues of the sample covariance over their total),
+/// through the n by n Gram matrix when d > n: O(n^2 d + n^3), never a d by d matrix. 0 when
+/// the samples do not vary.
+/// @param[in] X         n by d samples, n >= 2
+/// @param[in] fraction  in (0, 1]
+/// Throws Error for a fraction outside (0, 1] or a NaN or infinity in X.
+int dimensionHolding(const Eigen::MatrixXd& X, double fraction);
+
 /// Posterior means of the latent variables, <x> = M^{-1} W^T (t - mu) with
 /// M = sigma^2 I + W^T W (thesis eq. 4.19).
 /// @param[in] T  m by d samples, one per row

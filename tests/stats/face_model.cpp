@@ -265,3 +265,32 @@ TEST_CASE("face_model: reconstructAt is the joint conditional mean at the asked 
         CHECK(picked.segment<3>(3 * static_cast<Eigen::Index>(i)) == full.segment<3>(3 * at[i]));
     REQUIRE_THROWS_WITH(reconstructAt(t.model, obs, { kSide * kSide }), Catch::Contains("vertex " + std::to_string(kSide * kSide)));
 }
+
+TEST_CASE("face_model: each segment's clean-up keeps the dimensions that hold cleanUpVariance of its variance, at most cleanUpDim")
+{
+    Random random(41);
+    const Eigen::MatrixXd train = syntheticFaces(random, 100); // trained()'s training faces
+    // These faces vary along a few smooth modes plus noise: a segment holds 99% of its variance
+    // in 6 to 8 directions and 99.9% only in 62 to 79, so at 0.99 the rule bites under the
+    // cap of 10 (smallOptions) and at 1 every segment keeps the cap.
+    FaceModelOptions options = smallOptions();
+    options.cleanUpVariance = 0.99;
+    const FaceModel byVariance = trainFaceModel(train, gridTriangles(), kNoseTip, options);
+    options.cleanUpVariance = 1.0;
+    const FaceModel capped = trainFaceModel(train, gridTriangles(), kNoseTip, options);
+    REQUIRE(capped.segmentation.size() == byVariance.segmentation.size());
+    int below = 0;
+    for (int s = 0; s < byVariance.segmentation.size(); ++s) {
+        INFO("segment " << s);
+        const Eigen::MatrixXd Xs = train(Eigen::all, segmentCoordinates(byVariance.segmentation, s));
+        const int q = byVariance.segments[static_cast<size_t>(s)].cleanUp.latentDim();
+        CHECK(capped.segments[static_cast<size_t>(s)].cleanUp.latentDim() == 10);
+        CHECK(q == std::clamp(dimensionHolding(Xs, 0.99), 1, 10));
+        below += q < 10;
+    }
+    CHECK(below == byVariance.segmentation.size());
+    for (double bad : { 0.0, 1.5 }) {
+        options.cleanUpVariance = bad;
+        REQUIRE_THROWS_WITH(trainFaceModel(train, gridTriangles(), kNoseTip, options), Catch::Contains("cleanUpVariance"));
+    }
+}

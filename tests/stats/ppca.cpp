@@ -6,7 +6,10 @@
 #include "synthetic.h"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+#include <bit>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <limits>
 
 using namespace facesketch;
@@ -127,4 +130,36 @@ TEST_CASE("ppca: a Gram fit with no weighted sample is a degenerate fit, a bad q
     } catch (const Error& e) {
         CHECK(std::string(e.what()).find("latent dimension q = 6") != std::string::npos);
     }
+}
+
+TEST_CASE("ppca: dimensionHolding counts the principal directions that hold a fraction of the variance")
+{
+    // Eight samples along three orthogonal directions with variances 100, 10 and 1: the
+    // coefficients are columns 1-3 of the 8 by 8 Sylvester-Hadamard matrix (entries +-1, zero
+    // mean, mutually orthogonal), so the sample covariance's eigenvalues are exactly 100, 10, 1
+    // (times 8/8) and the shares 100/111 = 0.901, 110/111 = 0.991 and 1.
+    const auto hadamard = [](int i, int j) { return std::popcount(static_cast<unsigned>(i & j)) % 2 ? -1.0 : 1.0; };
+    Random random(7);
+    for (int d : { 4, 40 }) { // the covariance route and the Gram route
+        INFO("d = " << d);
+        const Eigen::MatrixXd Q
+            = Eigen::HouseholderQR<Eigen::MatrixXd>(random.normalMatrix(d, 3)).householderQ() * Eigen::MatrixXd::Identity(d, 3);
+        Eigen::MatrixXd X(8, d);
+        for (int i = 0; i < 8; ++i)
+            X.row(i)
+                = (10.0 * hadamard(i, 1) * Q.col(0) + std::sqrt(10.0) * hadamard(i, 2) * Q.col(1) + hadamard(i, 3) * Q.col(2)).transpose()
+                + Eigen::RowVectorXd::Constant(d, 5.0); // an offset the centring removes
+        CHECK(dimensionHolding(X, 0.9) == 1);
+        CHECK(dimensionHolding(X, 0.902) == 2);
+        CHECK(dimensionHolding(X, 0.99) == 2);
+        CHECK(dimensionHolding(X, 0.992) == 3);
+        CHECK(dimensionHolding(X, 1.0) == 3);
+        CHECK(dimensionHolding(Eigen::MatrixXd::Constant(8, d, 2.0), 0.5) == 0); // no variance
+    }
+    Eigen::MatrixXd X = random.normalMatrix(10, 6);
+    REQUIRE_THROWS_WITH(dimensionHolding(X, 0.0), Catch::Contains("fraction 0 is not in (0, 1]"));
+    REQUIRE_THROWS_WITH(dimensionHolding(X, 1.5), Catch::Contains("fraction 1.5"));
+    REQUIRE_THROWS_AS(dimensionHolding(X.topRows(1), 0.5), Error);
+    X(2, 5) = std::numeric_limits<double>::quiet_NaN();
+    REQUIRE_THROWS_WITH(dimensionHolding(X, 0.5), Catch::Contains("X(2, 5)"));
 }
