@@ -65,7 +65,7 @@ struct FaceModelOptions {
     /// keeps cleanUpDim everywhere (the rule until 6 December). The last 0.05% of a segment's
     /// variance is spread over many directions that few training faces take, and a model that
     /// keeps them has freedom to fit a stroke's noise with. On the synthetic high set (20 to 60
-    /// latents per segment instead of 60) strokes read 0.01-0.02 better in every view and a
+    /// latents per segment instead of 60) strokes read about 0.01 better in every view and a
     /// face comes back from 2% of its vertices a sixth better; on an ICT-FaceKit import (42 to
     /// 60) little changes. A fixed 40 everywhere broke the import's one-region inference
     /// (docs/face-model.md, "The clean-up dimension by variance").

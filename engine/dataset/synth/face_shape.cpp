@@ -124,8 +124,8 @@ constexpr double kAlaRound = 0.8;
 // to kAlaSlideFrom alar radii from its centre, moves the whole way and the skin round it less,
 // to nothing at kAlaSlideTo radii. Until v21 only the radial bump rose (bone()) and the skin
 // stayed, so the bump's steep upper flank passed under fixed vertices, and on the ultra grid
-// triangles at prn's height turned over in `disgust` (face 5 of the pose tests' seed; with the
-// lift halved, still two).
+// triangles at prn's height turned over in `disgust` (faces 5 and 14 of the pose tests' seed;
+// with the lift halved, face 5 still turned two over).
 constexpr double kAlaWrinkleLift = 0.6;
 constexpr double kAlaSlideFrom = 1.0, kAlaSlideTo = 2.0;
 // The lower nose's midline rises from sn to prn as 1 - u^kColumellaCurve (u: 1 at sn, 0 at prn).
