@@ -171,8 +171,13 @@ int dimensionHolding(const Eigen::MatrixXd& X, double fraction)
         fail("dimensionHolding: ", X.rows(), " samples; at least 2 are needed");
     requireFinite(X, "dimensionHolding: X");
     // The non-zero eigenvalues of X_c^T X_c and X_c X_c^T are the same.
-    const Eigen::MatrixXd Xc = X.rowwise() - X.colwise().mean();
-    const Eigen::MatrixXd G = X.cols() > X.rows() ? Eigen::MatrixXd(Xc * Xc.transpose()) : Eigen::MatrixXd(Xc.transpose() * Xc);
+    Eigen::MatrixXd G;
+    if (X.cols() > X.rows())
+        G = centredGram(X);
+    else {
+        const Eigen::MatrixXd Xc = X.rowwise() - X.colwise().mean();
+        G = Xc.transpose() * Xc;
+    }
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(G, Eigen::EigenvaluesOnly);
     if (eig.info() != Eigen::Success)
         fail("dimensionHolding: the eigen-decomposition did not converge");

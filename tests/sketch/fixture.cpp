@@ -6,6 +6,7 @@
 #include "model/head_model.h"
 #include "test_common.h"
 
+#include <filesystem>
 #include <memory>
 
 namespace facesketch::test {
@@ -22,8 +23,9 @@ const SketchWorld& sketchWorld(std::uint64_t seed)
     synth.identities = 40;
     synth.resolution = dataset::Resolution::Low;
     synth.seed = seed;
-    dataset::writeSynthDataset(dir / ("faces-" + std::to_string(seed)), synth);
-    const dataset::Dataset d = dataset::openDataset(dir / ("faces-" + std::to_string(seed)));
+    const std::filesystem::path faces = dir / ("faces-" + std::to_string(seed));
+    dataset::writeSynthDataset(faces, synth);
+    const dataset::Dataset d = dataset::openDataset(faces);
     world->manifest = d.manifest;
     const dataset::Component* skin = d.manifest.component("skin");
     REQUIRE(skin);

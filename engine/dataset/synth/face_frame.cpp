@@ -126,7 +126,10 @@ Frame makeFrame(const FaceParams& p)
     Frame f;
     f.p = p;
     f.zf = p.faceDepth;
-    f.yN = 0.5 * p.browHeight - kNasionLowering;
+    // The glabella, the forehead above it and the rows of both stay where they were with n at
+    // half the brow's height (until v21): they belong to the brow, which stays put over the eyes.
+    const double yHalfBrow = 0.5 * p.browHeight;
+    f.yN = yHalfBrow - kNasionLowering;
     // sn stands on the subnasal ridge (face_frame.h), as far in front of where v19 put it as the
     // ridge is high there; the profile's knot at sn stays where v19 put it (below).
     const double zSnBase = f.zf + 1.0;
@@ -144,9 +147,6 @@ Frame makeFrame(const FaceParams& p)
     f.fold = nasolabialCurve(f);
     const double slope = p.foreheadSlope;
 
-    // The glabella, the forehead above it and the rows of both stay where they were with n at
-    // half the brow's height (until v21): they belong to the brow, which stays put over the eyes.
-    const double yHalfBrow = f.yN + kNasionLowering;
     f.yG = yHalfBrow + 11;
     // Midline profile without nose, lips and chin boss: (y, z) pairs top to bottom.
     const std::vector<std::pair<double, double>> profile = {

@@ -138,6 +138,18 @@ constexpr double kColumellaCurve = 1.2;
 // one sees, which a radial bump on the underside draws lower; the fold stays.
 constexpr double kFoldAt = 0.9;
 
+// The alar lobule's radius and its centre (|X|, Y in mm) on face `f` under a nose wrinkle of
+// `wrinkle` (FaceActions::noseWrinkle; 0 for the neutral face): bone() raises the lobule there,
+// warp() moves its skin with it.
+struct AlarLobule {
+    double radius, x, y;
+};
+AlarLobule alarLobule(const Frame& f, double wrinkle)
+{
+    const double radius = f.p.alaSize * (1 + 0.04 * wrinkle);
+    return { radius, f.p.alal / 2 - kAlaIn * radius, lerp(f.ySn, f.yPrn, kAlaAt) + kAlaWrinkleLift * wrinkle };
+}
+
 // Radial height of nose, brows, sockets, cheekbones and chin: the parts that do not slide.
 double bone(const Frame& f, double theta, double phi, double X, double Y, const FaceActions& act)
 {
@@ -172,9 +184,7 @@ double bone(const Frame& f, double theta, double phi, double X, double Y, const 
             = x < 1 ? 0.88 * std::pow(1 - std::pow(x, lerp(2.0, kLobuleSquare, lower)), lerp(1.3, kLobuleFullness, lower)) : 0;
         body = height * (cross + 0.12 * std::exp(-sq(X / (2.4 * halfWidth))));
     }
-    const double ra = p.alaSize * (1 + 0.04 * act.noseWrinkle);
-    const double alaX = p.alal / 2 - kAlaIn * ra;
-    const double alaY = lerp(f.ySn, f.yPrn, kAlaAt) + kAlaWrinkleLift * act.noseWrinkle;
+    const auto [ra, alaX, alaY] = alarLobule(f, act.noseWrinkle);
     const double da = sq((ax - alaX) / ra) + sq((Y - alaY) / ((Y < alaY ? kAlaBelow : kAlaAbove) * ra));
     const double ala = da < 1 ? kAlaHeight * (0.34 * f.noseTip + 2.0) * std::pow(1 - da, kAlaRound) : 0;
     r += smax(body, ala, 6.0);
@@ -477,8 +487,8 @@ ChartPoint warp(const Frame& f, double theta0, double phi0, int slit, bool eyeRo
     if (act.noseWrinkle != 0) {
         const double rho0 = rhoBase(f, theta0, phi0);
         const double X0 = rho0 * std::sin(theta0), Y0 = rho0 * std::tan(phi0);
-        const double da = std::hypot(
-            (std::abs(X0) - (p.alal / 2 - kAlaIn * p.alaSize)) / p.alaSize, (Y0 - lerp(f.ySn, f.yPrn, kAlaAt)) / (kAlaAbove * p.alaSize));
+        const AlarLobule ala = alarLobule(f, 0);
+        const double da = std::hypot((std::abs(X0) - ala.x) / ala.radius, (Y0 - ala.y) / (kAlaAbove * ala.radius));
         dPhi += kAlaWrinkleLift * act.noseWrinkle * sq(std::cos(phi0)) / rho0 * fall((da - kAlaSlideFrom) / (kAlaSlideTo - kAlaSlideFrom));
     }
 
