@@ -105,7 +105,7 @@ fs::path builtInFolder()
     const fs::path cache = defaultCacheFolder();
     if (cache.empty())
         fail("gui: no cache folder for the built-in data: set FACESKETCH_CACHE_DIR, XDG_CACHE_HOME or HOME");
-    return cache / "builtin-high-v22";
+    return cache / "builtin-high-v23";
 }
 
 // The built-in data: the synthetic high-resolution set and its model, made once into the cache.

@@ -91,7 +91,7 @@ void placeEyes(Frame& f)
 {
     for (int s = 0; s < 2; ++s) {
         const double sign = s == 1 ? 1 : -1;
-        Eye& e = f.eye[s];
+        Ellipsoid& e = f.eye[s];
         // Seen from the front the eye must fill the whole fissure (globe plus the conjunctiva
         // and caruncle at the corners), so its x semi-axis spans en..ex with a margin.
         const double xc = (f.p.enen + f.p.exex) / 4;
@@ -214,6 +214,7 @@ Frame makeFrame(const FaceParams& p)
 
     // Nose height at prn so that the tip lands on its target.
     f.noseTip = 0;
+    f.xAl = p.alal / 2;
     f.thetaEn = p.enen / 2 / f.rEye;
     f.thetaEx = p.exex / 2 / (f.rEye - 15);
     placeEyes(f);
@@ -247,7 +248,22 @@ Frame makeFrame(const FaceParams& p)
         f.thetaEx = solveTheta(f, p.exex / 2, p.canthalTilt / f.rEye, f.thetaEx);
         placeEyes(f);
     }
-    f.thetaAl = solveTheta(f, p.alal / 2, f.phiPrn, p.alal / 2 / f.zf);
+    // al's column starts where the ala's sideways swell (alaSpread) will carry it out to al-al:
+    // secant steps on its neutral X (the swell falls by about 0.4 mm per mm outwards there).
+    f.thetaAl = p.alal / 2 / f.zf;
+    auto alMiss = [&](double x) {
+        f.thetaAl = solveTheta(f, x, f.phiPrn, f.thetaAl);
+        return x + alaSpread(f, f.thetaAl, f.phiPrn).x() - p.alal / 2;
+    };
+    double x0 = p.alal / 2, m0 = alMiss(x0), x1 = x0 - m0, m1 = alMiss(x1);
+    for (int pass = 0; pass < 6 && std::abs(m1) > 1e-9 && m1 != m0; ++pass) {
+        const double x2 = x1 - m1 * (x1 - x0) / (m1 - m0);
+        x0 = x1;
+        m0 = m1;
+        x1 = x2;
+        m1 = alMiss(x1);
+    }
+    f.xAl = x1;
     f.thetaCh = solveTheta(f, p.chch / 2, f.phiSto, p.chch / 2 / f.zf);
     return f;
 }

@@ -119,7 +119,8 @@ struct Monotone {
     }
 };
 
-struct Eye {
+// An ellipsoid with orthonormal axes: the eyeballs, and the nose's tip dome (face_shape.cpp).
+struct Ellipsoid {
     Eigen::Vector3d centre, right, up, forward;
     double a = 12, b = 12, c = 12; // semi-axes along right, up, forward
 };
@@ -146,12 +147,16 @@ struct Frame {
     double phiTopFront = 0.8, phiBrow = 0.2, phiN = 0.1, phiPrn = -0.4, phiSn = -0.5, phiLs = -0.6, phiSto = -0.65, phiLi = -0.7,
            phiPg = -0.8, phiGn = -0.9, phiBottomFront = -1.3;
     double noseTip = 20; // radial height of the nose at prn
+    // al's X on the neutral chart: half al-al less the ala's sideways swell there (alaSpread). The
+    // chart's nose columns, and so the labelled nostril rings, are spaced out to it, and the
+    // nostrils' footprints (face_shape.cpp) are placed on the same scale.
+    double xAl = 17;
     double thetaEn = 0.2, thetaEx = 0.6, thetaAl = 0.2, thetaCh = 0.3;
     double rEye = 80;        // mm per radian near the eyes
     double rMouth = 90;      // mm per radian of azimuth near the mouth
     double mouthScale = 140; // mm per radian of elevation near the mouth (midline height)
     double xEye = 31;        // eyeball centre, base x
-    Eye eye[2];              // right (-x), left (+x)
+    Ellipsoid eye[2];        // right (-x), left (+x)
     NasolabialCurve fold;    // built before the first neutralRadius() call
 };
 
@@ -172,5 +177,8 @@ Frame makeFrame(const FaceParams& p);
 NasolabialCurve nasolabialCurve(const Frame& f);
 /// Skin radius of the neutral face along (theta, phi); defined in face_shape.cpp.
 double neutralRadius(const Frame& f, double theta, double phi);
+/// How far the vertex at (theta, phi) of the neutral chart moves sideways with its ala: outwards
+/// from the midline, zero away from the alar lobule; defined in face_shape.cpp (kAlaSpread).
+Eigen::Vector3d alaSpread(const Frame& f, double theta, double phi);
 
 } // namespace facesketch::dataset::detail
