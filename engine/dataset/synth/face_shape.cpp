@@ -102,8 +102,8 @@ constexpr double kVestibuleFloor = 0.3;
 // the columella is one column of vertices with a pocket vertex on either side, and the two
 // triangles between them and the columella's front edge stand nearly back to back. With the tip
 // dome and the alae's changes (below) they folded (normals more than 150 degrees apart) on 4 of
-// 250 faces of seed 1, 2 of seed 3 and 1 of seed 11 (the pose tests' face 5); with the blend at
-// 3 mm on 2, 0 and 1; with both on none (v22: 2, 0 and 0). The nose's mean-face distance pays
+// 250 faces of seed 1 and 2 of seed 3; with the blend at 3 mm on 2 and 0, and on 1 of seed 11
+// (the pose tests' face 5); with both on none of the three seeds (v22: 2, 0 and 0). The nose's mean-face distance pays
 // 0.05 mm RMS for the millimetre of depth; a 4 mm blend folded a high face instead.
 constexpr double kColumellaHalf = 1.5;  // mm
 constexpr double kColumellaBlend = 3.0; // mm
