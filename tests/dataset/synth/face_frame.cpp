@@ -131,3 +131,34 @@ TEST_CASE("face_frame: makeFrame puts the profile landmarks and the eye and mout
     REQUIRE(noseMiss < 0.01);
     REQUIRE(mouthMiss < 0.5);
 }
+
+// The alae's sideways swell (v23, face_shape.cpp alaSpread): a displacement along x only, mirror
+// symmetric, outwards from the midline, nothing on the midline or away from the nose, at most
+// the 3 mm it is built to reach, and al itself carried outwards (its column starts inside al-al,
+// Frame::xAl).
+TEST_CASE("face_frame: the alae swell sideways, mirror symmetric, outwards and only round the alae")
+{
+    for (int index = 0; index < 20; ++index) {
+        const FaceParams p = sampleFaceParams(2, index);
+        const Frame f = makeFrame(p);
+        INFO("identity " << index);
+        double largest = 0;
+        for (double theta = 0; theta <= 0.6; theta += 0.01)
+            for (double phi = f.phiSn - 0.1; phi <= f.phiN; phi += 0.01) {
+                const Eigen::Vector3d right = alaSpread(f, theta, phi), left = alaSpread(f, -theta, phi);
+                REQUIRE(right.y() == 0);
+                REQUIRE(right.z() == 0);
+                REQUIRE(right.x() >= 0);
+                REQUIRE(left.x() == Approx(-right.x()).margin(1e-12));
+                largest = std::max(largest, right.x());
+            }
+        REQUIRE(largest > 2.5);
+        REQUIRE(largest <= 3.0);
+        REQUIRE(alaSpread(f, 0, f.phiPrn).norm() == 0);         // the midline stays whole
+        REQUIRE(alaSpread(f, f.thetaEx, 0).norm() == 0);        // the eye's corner
+        REQUIRE(alaSpread(f, f.thetaCh, f.phiSto).norm() == 0); // the mouth's corner
+        const double atAl = alaSpread(f, f.thetaAl, f.phiPrn).x();
+        REQUIRE(atAl > 0);
+        REQUIRE(f.xAl == Approx(p.alal / 2 - atAl).margin(0.01));
+    }
+}
