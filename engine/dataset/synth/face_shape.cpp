@@ -98,13 +98,13 @@ constexpr double kVestibuleWall = 1.0; // mm
 // 7, 250 high faces each). At 0.45 the rim was ragged on the high grid, whose rows lie about
 // 2.5 mm apart there.
 constexpr double kVestibuleFloor = 0.3;
-// v23: the blend 3 mm (2 until v22) and the pockets 13 mm deep (14 until v22). On the low grid
-// the columella is one column of vertices with a pocket vertex on either side, and the two
-// triangles between them and the columella's front edge stand nearly back to back. With the tip
-// dome and the alae's changes (below) they folded (normals more than 150 degrees apart) on 4 of
-// 250 faces of seed 1 and 2 of seed 3; with the blend at 3 mm on 2 and 0, and on 1 of seed 11
-// (the pose tests' face 5); with both on none of the three seeds (v22: 2, 0 and 0). The nose's mean-face distance pays
-// 0.05 mm RMS for the millimetre of depth; a 4 mm blend folded a high face instead.
+// v23: the blend 3 mm (2 until v22) and the pockets 13 mm deep (14 until v22). On the low grid the
+// columella is one column of vertices with a pocket vertex on either side, and the two triangles
+// between them and the columella's front edge stand nearly back to back. With the tip dome and the
+// alae's changes (below) they folded (normals more than 150 degrees apart) on 4 of 250 faces of
+// seed 1 and 2 of seed 3; with the blend at 3 mm on 2 and 0, and on 1 of seed 11 (the pose tests'
+// face 5); with both on none of the three seeds (v22: 2, 0 and 0). The nose's mean-face distance
+// pays 0.05 mm RMS for the millimetre of depth; a 4 mm blend folded a high face instead.
 constexpr double kColumellaHalf = 1.5;  // mm
 constexpr double kColumellaBlend = 3.0; // mm
 
@@ -146,10 +146,10 @@ constexpr double kAlaSpreadRadius = 1.5; // alar radii
 // of prn's height above sn tall and kTipDomeDepth mm deep (half-axes), its front at the nose's prn
 // (so the frame's solve for the nose's height still puts prn on its target), joined to the skin by
 // a smooth maximum kTipDomeBlend mm wide. The radial lower nose (bone()) meets its underside at prn
-// in a corner of a few mm radius that read in profile as a wedge; the dome rounds it as ICT-
-// FaceKit's tips are round. Outside the dome's silhouette (seen from the head's centre) the ray's
-// distance falls kTipDomeFall half-heights per unit of the miss. Seen from the side, the nose's
-// outline 2 mm below prn now lies 1.5 mm behind it, 2.6 without the dome and 3.5 in v22 (the
+// in a corner of a few mm radius that read in profile as a wedge; the dome rounds it as
+// ICT-FaceKit's tips are round. Outside the dome's silhouette (seen from the head's centre) the
+// ray's distance falls kTipDomeFall half-heights per unit of the miss. Seen from the side, the
+// nose's outline 2 mm below prn now lies 1.5 mm behind it, 2.6 without the dome and 3.5 in v22 (the
 // face_shape test; ICT-FaceKit's faces 0.5). Centred higher, by 0.3 half-heights, the dome left the
 // tip as sharp as without it. docs/realism.md, "v23".
 constexpr double kTipDomeHalfWidth = 1.4;
