@@ -1,14 +1,13 @@
 #include "dataset/synth/synth_dataset.h"
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "dataset/dataset.h"
 #include "dataset/synth/pose_recipes.h"
 #include "io/mesh_io.h"
 
 #include <atomic>
 #include <cmath>
-#include <mutex>
-#include <thread>
 
 namespace facesketch::dataset {
 
@@ -65,49 +64,31 @@ void writeSynthDataset(const fs::path& folder, const SynthOptions& options, cons
         for (int i = 0; i < posed; ++i)
             fs::create_directories(tmp / "poses" / manifest.samples[static_cast<size_t>(i)].name);
 
-        // Jobs are identities; each worker writes its own files, so the order of completion
-        // does not affect any byte written.
-        std::atomic<int> next { 0 }, done { 0 };
-        std::exception_ptr error;
-        std::mutex errorMutex;
-        auto work = [&](bool reporter) {
-            Mesh mesh;
-            mesh.F = topology.labels.topology;
-            for (int i = next++; i < options.identities; i = next++) {
-                try {
-                    const FaceParams params = sampleFaceParams(options.seed, i);
-                    const Sample& s = manifest.samples[static_cast<size_t>(i)];
-                    mesh.V = synthesizeFace(topology, params);
-                    writePly(tmp / s.file, mesh);
-                    ++done;
-                    if (i < posed)
-                        for (int k = 0; k < poseCount; ++k) {
-                            const Pose& p = manifest.poses[static_cast<size_t>(i * poseCount + k)];
-                            mesh.V = synthesizeFace(topology, params, poseRecipes()[static_cast<size_t>(k)].actions);
-                            writePly(tmp / p.file, mesh);
-                            ++done;
-                        }
-                    if (reporter && progress)
-                        progress(done.load(), total);
-                } catch (...) {
-                    std::lock_guard<std::mutex> lock(errorMutex);
-                    if (!error)
-                        error = std::current_exception();
-                    next = options.identities; // stop handing out work
-                }
-            }
-        };
-        const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-        const int threads = std::max(1, std::min(options.threads > 0 ? options.threads : static_cast<int>(hardware), options.identities));
-        std::vector<std::thread> pool;
-        for (int t = 1; t < threads; ++t)
-            pool.emplace_back(work, false);
-        work(true); // the calling thread works too, and reports progress
-
-        for (std::thread& t : pool)
-            t.join();
-        if (error)
-            std::rethrow_exception(error);
+        // Jobs are identities; each writes its own files, so the order of completion does not
+        // affect any byte written.
+        std::atomic<int> done { 0 };
+        parallelFor(
+            options.identities, options.threads,
+            [&](int i) {
+                Mesh mesh;
+                mesh.F = topology.labels.topology;
+                const FaceParams params = sampleFaceParams(options.seed, i);
+                const Sample& s = manifest.samples[static_cast<size_t>(i)];
+                mesh.V = synthesizeFace(topology, params);
+                writePly(tmp / s.file, mesh);
+                ++done;
+                if (i < posed)
+                    for (int k = 0; k < poseCount; ++k) {
+                        const Pose& p = manifest.poses[static_cast<size_t>(i * poseCount + k)];
+                        mesh.V = synthesizeFace(topology, params, poseRecipes()[static_cast<size_t>(k)].actions);
+                        writePly(tmp / p.file, mesh);
+                        ++done;
+                    }
+            },
+            [&] {
+                if (progress)
+                    progress(done.load(), total);
+            });
         if (progress)
             progress(done.load(), total);
     });

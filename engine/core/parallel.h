@@ -1,0 +1,25 @@
+#pragma once
+// One loop over independent items on several threads. The engine's heavy loops (synthesising
+// faces, estimating every face's curvature) are per item with nothing shared, so a plain pool
+// that hands out indices in order is all they need; results go into slots owned by the index,
+// which keeps every output independent of the number of threads.
+
+#include <functional>
+
+namespace facesketch {
+
+/// Runs body(i) once for every i in [0, count) on up to `threads` threads (0: one per hardware
+/// thread; never more than count), the calling thread among them. Indices are handed out in
+/// increasing order as threads free up, so body must not depend on which thread runs an index
+/// or on the order indices finish. With one thread every index runs on the calling thread, in
+/// order.
+///
+/// After each index it ran, the calling thread runs `onCaller` (when set): the place for
+/// progress reports that must come from one thread.
+///
+/// The first exception thrown by body (or onCaller) stops the handing out of indices; indices
+/// already started finish, and the exception is rethrown here once every thread has joined.
+/// Throws Error for a negative count or threads.
+void parallelFor(int count, int threads, const std::function<void(int)>& body, const std::function<void()>& onCaller = {});
+
+} // namespace facesketch
