@@ -122,6 +122,9 @@ void addTrainCommand(CLI::App& root)
     cmd->add_option("--restarts", f.mppca.restarts, "EM runs from different starts per mixture (best kept)")
         ->capture_default_str()
         ->check(CLI::Range(1, 100));
+    cmd->add_option("--threads", f.threads, "Threads fitting the segments (0: all hardware threads; the model is the same for any number)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 256));
     cmd->add_option("--anchors", c->options.anchors, "Skin vertices each rigid part (eyeball, teeth, tongue) follows")
         ->capture_default_str()
         ->check(CLI::Range(1, 100000));

@@ -2,11 +2,13 @@
 
 #include "core/error.h"
 #include "core/names.h"
+#include "core/parallel.h"
 #include "stats/check.h"
 
 #include <Eigen/QR>
 
 #include <algorithm>
+#include <atomic>
 #include <iomanip>
 #include <sstream>
 
@@ -66,31 +68,40 @@ FaceModel trainFaceModel(
     // The smallest training set cross-validation sees; each component needs more samples than
     // its latent dimension plus one, or its noise variance collapses.
     const Eigen::Index foldTrain = n - (n + options.folds - 1) / options.folds;
+    // The segments' models are independent of each other (each reads only its own columns and
+    // seeds its own restarts), so they are fitted on all threads, each into its own slot.
     const int segments = model.segmentation.size();
-    for (int s = 0; s < segments; ++s) {
-        const std::vector<Eigen::Index> coords = segmentCoordinates(model.segmentation, s);
-        const Eigen::MatrixXd Xs = faces(Eigen::all, coords);
-        const auto d = static_cast<Eigen::Index>(coords.size());
-        MppcaOptions o = options.mppca;
-        o.latentDim = static_cast<int>(std::clamp<Eigen::Index>(options.latentDim, 1, std::min(d - 1, foldTrain - 2)));
-        std::vector<int> candidates;
-        for (int K : options.components)
-            if (K >= 1 && foldTrain / K > o.latentDim + 1)
-                candidates.push_back(K);
-        if (candidates.empty())
-            candidates.push_back(1);
-        o.components = candidates.size() == 1 ? candidates.front() : chooseComponents(Xs, candidates, o, options.folds).best;
-        const MppcaFit fit = fitMppca(Xs, o);
-        SegmentModel sm;
-        sm.mixture = fit.model;
-        sm.logLikelihood = fit.logLikelihood.back() / static_cast<double>(n);
-        int cleanUpDim = static_cast<int>(std::clamp<Eigen::Index>(options.cleanUpDim, 1, std::min(d - 1, n - 2)));
-        if (options.cleanUpVariance < 1)
-            cleanUpDim = std::clamp(dimensionHolding(Xs, options.cleanUpVariance), 1, cleanUpDim);
-        sm.cleanUp = fitPpca(Xs, cleanUpDim);
-        model.segments.push_back(std::move(sm));
-        report("segment " + std::to_string(s + 1) + " of " + std::to_string(segments), (s + 1.0) / (segments + 1.0));
-    }
+    model.segments.resize(static_cast<size_t>(segments));
+    std::atomic<int> fitted { 0 };
+    parallelFor(
+        segments, options.threads,
+        [&](int s) {
+            const std::vector<Eigen::Index> coords = segmentCoordinates(model.segmentation, s);
+            const Eigen::MatrixXd Xs = faces(Eigen::all, coords);
+            const auto d = static_cast<Eigen::Index>(coords.size());
+            MppcaOptions o = options.mppca;
+            o.latentDim = static_cast<int>(std::clamp<Eigen::Index>(options.latentDim, 1, std::min(d - 1, foldTrain - 2)));
+            std::vector<int> candidates;
+            for (int K : options.components)
+                if (K >= 1 && foldTrain / K > o.latentDim + 1)
+                    candidates.push_back(K);
+            if (candidates.empty())
+                candidates.push_back(1);
+            o.components = candidates.size() == 1 ? candidates.front() : chooseComponents(Xs, candidates, o, options.folds).best;
+            const MppcaFit fit = fitMppca(Xs, o);
+            SegmentModel& sm = model.segments[static_cast<size_t>(s)];
+            sm.mixture = fit.model;
+            sm.logLikelihood = fit.logLikelihood.back() / static_cast<double>(n);
+            int cleanUpDim = static_cast<int>(std::clamp<Eigen::Index>(options.cleanUpDim, 1, std::min(d - 1, n - 2)));
+            if (options.cleanUpVariance < 1)
+                cleanUpDim = std::clamp(dimensionHolding(Xs, options.cleanUpVariance), 1, cleanUpDim);
+            sm.cleanUp = fitPpca(Xs, cleanUpDim);
+            ++fitted;
+        },
+        [&] {
+            const int done = fitted.load();
+            report("segment " + std::to_string(done) + " of " + std::to_string(segments), static_cast<double>(done) / (segments + 1.0));
+        });
 
     // Correlation (4.2.5): one row of concatenated clean-up latents per training face.
     Eigen::Index total = 0;

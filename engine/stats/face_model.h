@@ -76,6 +76,9 @@ struct FaceModelOptions {
     int correlationLatentDim = 80;
     /// EM settings shared by all mixtures (components and latentDim are overridden).
     MppcaOptions mppca;
+    /// Threads fitting the segments' models (0: one per hardware thread). The model is the
+    /// same, byte for byte, for any number.
+    int threads = 0;
 };
 
 /// One segment's models, over the coordinates segmentCoordinates(segmentation, s).

@@ -5,11 +5,15 @@
 
 #include "core/error.h"
 #include "core/random.h"
+#include "stats/model_file.h"
 #include "synthetic_faces.h"
+#include "test_common.h"
 
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <numbers>
 
 using namespace facesketch;
@@ -293,4 +297,25 @@ TEST_CASE("face_model: each segment's clean-up keeps the dimensions that hold cl
         options.cleanUpVariance = bad;
         REQUIRE_THROWS_WITH(trainFaceModel(train, gridTriangles(), kNoseTip, options), Catch::Contains("cleanUpVariance"));
     }
+}
+
+TEST_CASE("face_model: the segments fitted on several threads give the model one thread gives, byte for byte")
+{
+    Random random(41);
+    const Eigen::MatrixXd train = syntheticFaces(random, 100); // trained()'s training faces
+    const TempDir dir;
+    auto savedBytes = [&](int threads) {
+        FaceModelOptions options = smallOptions();
+        options.threads = threads;
+        const FaceModel model = trainFaceModel(train, gridTriangles(), kNoseTip, options);
+        REQUIRE(model.segmentation.size() >= 3); // enough segments for the threads to share
+        const std::filesystem::path path = dir / ("threads-" + std::to_string(threads) + ".model");
+        saveFaceModel(model, path);
+        std::ifstream in(path, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    };
+    const std::string one = savedBytes(1);
+    REQUIRE(!one.empty());
+    REQUIRE(savedBytes(3) == one);
+    REQUIRE(savedBytes(0) == one);
 }
