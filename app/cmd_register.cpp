@@ -233,6 +233,9 @@ void addImportScansCommand(CLI::App& import)
            "Vertices whose surface meets the axis' ray at a cosine below this are re-placed from their neighbours and snapped (0: off)")
         ->capture_default_str()
         ->check(CLI::Range(0.0, 0.99));
+    sub->add_option("--threads", o->o.threads, "Scans registered at once (0: one per hardware thread)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 256));
     sub->add_flag("-q,--quiet", o->quiet, "No progress bar");
     sub->callback([o] {
         o->o.registration.mapHeight = o->o.registration.mapWidth;

@@ -2,6 +2,7 @@
 
 #include <cfenv>
 #include <fstream>
+#include <iterator>
 #include <optional>
 #include <random>
 
@@ -53,6 +54,12 @@ TempDir::~TempDir()
 void writeText(const std::filesystem::path& path, const std::string& text)
 {
     std::ofstream(path, std::ios::binary) << text;
+}
+
+std::string readBytes(const std::filesystem::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    return { std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>() };
 }
 
 } // namespace facesketch::test

@@ -31,8 +31,11 @@ private:
 /// messages on purpose sets it to gpu::validationMessageCount() once it has checked them.
 std::uint64_t& validationBaseline();
 
-/// Writes `text` to `path` (for malformed-input tests).
+/// Writes `text` to `path` as bytes (for malformed-input tests).
 void writeText(const std::filesystem::path& path, const std::string& text);
+
+/// The bytes of the file at `path` (empty if it cannot be read).
+std::string readBytes(const std::filesystem::path& path);
 
 } // namespace facesketch::test
 

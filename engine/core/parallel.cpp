@@ -11,7 +11,7 @@
 
 namespace facesketch {
 
-void parallelFor(int count, int threads, const std::function<void(int)>& body, const std::function<void()>& onCaller)
+void parallelFor(int count, int threads, const std::function<void(int)>& body, const std::function<void(int)>& onCaller)
 {
     if (count < 0)
         fail("parallelFor: count ", count, " is negative");
@@ -31,7 +31,7 @@ void parallelFor(int count, int threads, const std::function<void(int)>& body, c
             try {
                 body(i);
                 if (caller && onCaller)
-                    onCaller();
+                    onCaller(i);
             } catch (...) {
                 std::lock_guard<std::mutex> lock(errorMutex);
                 if (!error)

@@ -14,12 +14,12 @@ namespace facesketch {
 /// or on the order indices finish. With one thread every index runs on the calling thread, in
 /// order.
 ///
-/// After each index it ran, the calling thread runs `onCaller` (when set): the place for
+/// After each index it ran, the calling thread runs onCaller(index) (when set): the place for
 /// progress reports that must come from one thread.
 ///
 /// The first exception thrown by body (or onCaller) stops the handing out of indices; indices
 /// already started finish, and the exception is rethrown here once every thread has joined.
 /// Throws Error for a negative count or threads.
-void parallelFor(int count, int threads, const std::function<void(int)>& body, const std::function<void()>& onCaller = {});
+void parallelFor(int count, int threads, const std::function<void(int)>& body, const std::function<void(int)>& onCaller = {});
 
 } // namespace facesketch

@@ -1,10 +1,12 @@
 #include "registration/import_scans.h"
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "dataset/import_meshes.h"
 #include "io/mesh_io.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 
 namespace facesketch::registration {
@@ -49,28 +51,58 @@ ScanImport importScans(const fs::path& folder, const dataset::Dataset& templ, co
     // Options are checked once here, so that the per-scan Errors caught below are the scans' own.
     checkRegistrationOptions(registration, mean.V.rows(), "import scans");
 
+    // Scans register independently, each into its own slot, on all threads. The names are
+    // checked afterwards in file order, so the samples and failures are the same for any number
+    // of threads: a scan whose stem an earlier registered scan already has (anna.obj beside
+    // anna.ply) is left out.
+    struct Outcome {
+        Vertices registered;
+        std::string reason; ///< empty if it registered
+        bool hasPoints = false;
+    };
+    std::vector<Outcome> outcomes(scans.size());
+    const int total = static_cast<int>(scans.size());
+    std::atomic<int> done { 0 };
+    int reported = 0; // by the calling thread
+    parallelFor(
+        total, options.threads,
+        [&](int i) {
+            const fs::path& scan = scans[static_cast<size_t>(i)];
+            const fs::path pointsFile = folder / (scan.stem().string() + ".points.json");
+            Outcome& o = outcomes[static_cast<size_t>(i)];
+            try {
+                if (!fs::exists(pointsFile))
+                    fail(scan.string(), ": no feature points ", pointsFile.string());
+                o.hasPoints = true;
+                Mesh mesh = readMesh(scan);
+                mesh.V *= scanScale;
+                FeaturePoints points = readFeaturePoints(pointsFile);
+                for (auto& [name, p] : points)
+                    p *= scanScale;
+                o.registered = registerScan(mean, templatePoints, mesh, points, scan.string(), registration).registered / templateScale;
+            } catch (const Error& e) {
+                o.reason = e.what();
+            }
+            ++done;
+        },
+        [&](int i) {
+            if (options.progress)
+                options.progress(reported = done.load(), total, scans[static_cast<size_t>(i)].filename().string());
+        });
+    if (options.progress && reported < total) // another thread finished the last scans
+        options.progress(total, total, scans.back().filename().string());
+
     ScanImport out;
     std::vector<std::pair<std::string, Vertices>> registered;
     for (std::size_t i = 0; i < scans.size(); ++i) {
-        const fs::path& scan = scans[i];
-        const fs::path pointsFile = folder / (scan.stem().string() + ".points.json");
-        try {
-            if (!fs::exists(pointsFile))
-                fail(scan.string(), ": no feature points ", pointsFile.string());
-            if (std::any_of(registered.begin(), registered.end(), [&](const auto& r) { return r.first == scan.stem().string(); }))
-                fail(scan.string(), ": another scan has the name '", scan.stem().string(), "'");
-            Mesh mesh = readMesh(scan);
-            mesh.V *= scanScale;
-            FeaturePoints points = readFeaturePoints(pointsFile);
-            for (auto& [name, p] : points)
-                p *= scanScale;
-            const Registration r = registerScan(mean, templatePoints, mesh, points, scan.string(), registration);
-            registered.emplace_back(scan.stem().string(), r.registered / templateScale);
-        } catch (const Error& e) {
-            out.failures.push_back({ scan, e.what() });
-        }
-        if (options.progress)
-            options.progress(static_cast<int>(i + 1), static_cast<int>(scans.size()), scan.filename().string());
+        const std::string stem = scans[i].stem().string();
+        Outcome& o = outcomes[i];
+        if (o.hasPoints && std::any_of(registered.begin(), registered.end(), [&](const auto& r) { return r.first == stem; }))
+            o.reason = scans[i].string() + ": another scan has the name '" + stem + "'";
+        if (o.reason.empty())
+            registered.emplace_back(stem, std::move(o.registered));
+        else
+            out.failures.push_back({ scans[i], o.reason });
     }
     if (registered.empty()) {
         std::string reasons;

@@ -35,7 +35,11 @@ struct ScanImportOptions {
     std::uint64_t seed = 1;   ///< role shuffle
     std::string units = "mm"; ///< units of the scans and their points
     RegistrationOptions registration;
-    /// Called after each scan: (scans done, scan count, scan file name).
+    /// Threads registering scans (0: one per hardware thread); the dataset written is the same
+    /// for any number.
+    int threads = 0;
+    /// Called from the calling thread after each scan it registered: (scans done by all
+    /// threads, scan count, that scan's file name). With one thread, after every scan in order.
     std::function<void(int, int, const std::string&)> progress;
 };
 

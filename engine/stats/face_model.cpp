@@ -98,7 +98,7 @@ FaceModel trainFaceModel(
             sm.cleanUp = fitPpca(Xs, cleanUpDim);
             ++fitted;
         },
-        [&] {
+        [&](int) {
             const int done = fitted.load();
             report("segment " + std::to_string(done) + " of " + std::to_string(segments), static_cast<double>(done) / (segments + 1.0));
         });

@@ -3,23 +3,14 @@
 #include "test_common.h"
 
 #include <fstream>
-#include <sstream>
 
 using namespace facesketch;
-
-static std::string slurp(const std::filesystem::path& p)
-{
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 TEST_CASE("writeFileAtomically: writes the whole file and leaves no temporary")
 {
     test::TempDir dir;
     writeFileAtomically(dir / "a.txt", [](std::ostream& out) { out << "hello"; });
-    REQUIRE(slurp(dir / "a.txt") == "hello");
+    REQUIRE(test::readBytes(dir / "a.txt") == "hello");
     int entries = 0;
     for (const auto& e : std::filesystem::directory_iterator(dir.path())) {
         (void)e;
@@ -38,7 +29,7 @@ TEST_CASE("writeFileAtomically: a failing writer keeps the previous file intact"
                               fail("disk on fire");
                           }),
         Error);
-    REQUIRE(slurp(dir / "a.txt") == "version 1");
+    REQUIRE(test::readBytes(dir / "a.txt") == "version 1");
     int entries = 0;
     for (const auto& e : std::filesystem::directory_iterator(dir.path())) {
         (void)e;

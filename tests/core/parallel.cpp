@@ -28,40 +28,40 @@ TEST_CASE("parallelFor: every index runs exactly once, for any number of threads
 TEST_CASE("parallelFor: one thread runs the indices in order on the calling thread")
 {
     const std::thread::id caller = std::this_thread::get_id();
-    std::vector<int> order;
-    int reports = 0;
+    std::vector<int> order, reported;
     parallelFor(
         20, 1,
         [&](int i) {
             REQUIRE(std::this_thread::get_id() == caller);
             order.push_back(i);
         },
-        [&] { ++reports; });
+        [&](int i) { reported.push_back(i); });
     REQUIRE(order.size() == 20);
     for (int i = 0; i < 20; ++i)
         REQUIRE(order[static_cast<size_t>(i)] == i);
-    REQUIRE(reports == 20);
+    REQUIRE(reported == order);
 }
 
-TEST_CASE("parallelFor: onCaller runs on the calling thread only, once per index it ran")
+TEST_CASE("parallelFor: onCaller runs on the calling thread only, after each index that thread ran")
 {
     const std::thread::id caller = std::this_thread::get_id();
-    std::atomic<int> onCallerThread { 0 };
-    std::atomic<int> reports { 0 }, wrongThread { 0 };
+    std::vector<int> ranOnCaller, reported; // touched by the calling thread only
+    std::atomic<int> wrongThread { 0 };
     parallelFor(
         200, 4,
-        [&](int) {
+        [&](int i) {
             if (std::this_thread::get_id() == caller)
-                ++onCallerThread;
+                ranOnCaller.push_back(i);
         },
-        [&] {
-            ++reports;
+        [&](int i) {
             if (std::this_thread::get_id() != caller)
                 ++wrongThread;
+            else
+                reported.push_back(i);
         });
     REQUIRE(wrongThread.load() == 0);
-    REQUIRE(reports.load() == onCallerThread.load());
-    REQUIRE(reports.load() >= 1);
+    REQUIRE(!reported.empty());
+    REQUIRE(reported == ranOnCaller);
 }
 
 TEST_CASE("parallelFor: the first error stops the work and is rethrown after the join")
@@ -93,7 +93,7 @@ TEST_CASE("parallelFor: the first error stops the work and is rethrown after the
     // An error in onCaller stops the work too.
     int calls = 0;
     REQUIRE_THROWS_WITH(parallelFor(
-                            5, 1, [&](int) { ++calls; }, [] { throw std::runtime_error("report failed"); }),
+                            5, 1, [&](int) { ++calls; }, [](int) { throw std::runtime_error("report failed"); }),
         "report failed");
     REQUIRE(calls == 1);
 }

@@ -6,7 +6,6 @@
 #include <cfenv>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 using namespace facesketch;
 using namespace facesketch::dataset;
@@ -30,20 +29,12 @@ Manifest tiny()
     return m;
 }
 
-std::string slurp(const std::filesystem::path& p)
-{
-    std::ifstream in(p);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 // Writes the tiny manifest with one field of the JSON replaced, and returns readManifest's error.
 std::string errorWith(const std::string& pointer, const nlohmann::json& value)
 {
     test::TempDir dir;
     writeManifest(dir / "manifest.json", tiny());
-    nlohmann::json doc = nlohmann::json::parse(slurp(dir / "manifest.json"));
+    nlohmann::json doc = nlohmann::json::parse(test::readBytes(dir / "manifest.json"));
     if (value.is_discarded()) {
         const nlohmann::json::json_pointer ptr(pointer);
         doc[ptr.parent_pointer()].erase(ptr.back());
@@ -84,7 +75,7 @@ TEST_CASE("manifest: write then read gives the same manifest, and the same bytes
     REQUIRE(r.poses.size() == 1);
     REQUIRE(r.poses[0].name == "smile");
     writeManifest(dir / "again.json", r);
-    REQUIRE(slurp(dir / "again.json") == slurp(dir / "manifest.json"));
+    REQUIRE(test::readBytes(dir / "again.json") == test::readBytes(dir / "manifest.json"));
     REQUIRE(r.samplesWithRole(Role::Train).size() == 1);
 }
 
@@ -182,7 +173,7 @@ TEST_CASE("manifest: hostile sizes and paths are refused with a clear message")
         Contains("manifest.json: byte 76: arrays and objects nested more than 64 deep"));
     // A 10 MB sample name.
     writeManifest(dir / "good.json", tiny());
-    std::string big = slurp(dir / "good.json");
+    std::string big = test::readBytes(dir / "good.json");
     big.replace(big.find("\"a\""), 3, "\"" + std::string(10 << 20, 'a') + "\"");
     REQUIRE_THAT(readError(big), Contains("a string longer than 65536 bytes"));
     // Counts beyond every limit, also as unsigned 64-bit numbers that would wrap to -1.

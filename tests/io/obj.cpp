@@ -5,20 +5,7 @@
 #include "io/mesh_io.h"
 #include "test_common.h"
 
-#include <fstream>
-#include <iterator>
-
 using namespace facesketch;
-
-namespace {
-
-std::string readText(const std::filesystem::path& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    return { std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>() };
-}
-
-} // namespace
 
 TEST_CASE("obj: a written mesh reads back to float precision")
 {
@@ -31,7 +18,7 @@ TEST_CASE("obj: a written mesh reads back to float precision")
     REQUIRE(back.F == sphere.F);
     // Written with 9 significant digits, read through tinyobjloader's float32: 114 mm * 2^-24.
     CHECK((back.V - sphere.V).cwiseAbs().maxCoeff() <= 114.0 * 0x1p-24);
-    const std::string text = readText(dir / "s.obj");
+    const std::string text = test::readBytes(dir / "s.obj");
     CHECK(text.rfind("# FaceSketch mesh: 162 vertices, 320 triangles\nv ", 0) == 0);
 }
 
@@ -77,10 +64,10 @@ TEST_CASE("obj: writing an invalid mesh fails before touching the file")
     test::TempDir dir;
     Mesh mesh = makeIcosphere(1, 0);
     writeObj(dir / "m.obj", mesh);
-    const std::string before = readText(dir / "m.obj");
+    const std::string before = test::readBytes(dir / "m.obj");
     mesh.F(3, 1) = static_cast<int>(mesh.V.rows());
     REQUIRE_THROWS_WITH(writeObj(dir / "m.obj", mesh), Catch::Contains("m.obj: triangle 3 has vertex index 12"));
-    CHECK(readText(dir / "m.obj") == before);
+    CHECK(test::readBytes(dir / "m.obj") == before);
 }
 
 TEST_CASE("obj: readObjVertices reads every v line in double precision and skips the rest")

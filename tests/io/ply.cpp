@@ -9,19 +9,11 @@
 #include <algorithm>
 #include <bit>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <limits>
 
 using namespace facesketch;
 
 namespace {
-
-std::string readBytes(const std::filesystem::path& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    return { std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>() };
-}
 
 // Appends `value` to `out` most significant byte first.
 template <typename T> void appendBigEndian(std::string& out, T value)
@@ -58,7 +50,7 @@ TEST_CASE("ply: binary and ASCII files read back to float precision")
             CHECK(back.V == sphere.V.cast<float>().cast<double>());
     }
     writePly(dir / "b.ply", sphere);
-    const std::string binary = readBytes(dir / "b.ply");
+    const std::string binary = test::readBytes(dir / "b.ply");
     CHECK(binary.rfind("ply\nformat binary_little_endian 1.0\n", 0) == 0);
     // Header, then 12 bytes per vertex and 13 per triangle.
     CHECK(binary.size() == binary.find("end_header\n") + 11 + 12 * 162 + 13 * 320);
@@ -132,7 +124,7 @@ TEST_CASE("ply: malformed binary files name the file and element")
 {
     test::TempDir dir;
     writePly(dir / "ok.ply", makeIcosphere(1, 1), PlyEncoding::Binary);
-    const std::string bytes = readBytes(dir / "ok.ply");
+    const std::string bytes = test::readBytes(dir / "ok.ply");
     // Cut short: the error names the element being read.
     test::writeText(dir / "cut.ply", bytes.substr(0, bytes.size() - 20));
     REQUIRE_THROWS_WITH(readPly(dir / "cut.ply"), Catch::Contains("cut.ply: file ends inside face 78") && Catch::Contains("truncated"));

@@ -3,26 +3,14 @@
 
 #include "core/error.h"
 #include "posed.h"
+#include "test_common.h"
 
 #include <catch2/catch.hpp>
-#include <fstream>
-#include <iterator>
 
 using namespace facesketch;
 using namespace facesketch::pose;
 
 namespace {
-
-std::string readBytes(const std::filesystem::path& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    return { std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>() };
-}
-
-void writeBytes(const std::filesystem::path& path, const std::string& bytes)
-{
-    std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-}
 
 bool sameMixture(const stats::Mppca& a, const stats::Mppca& b)
 {
@@ -65,7 +53,7 @@ TEST_CASE("pose file: a model reads back exactly and maps the same")
     CHECK(mapToMesh(r.mapping, fp) == mapToMesh(m.mapping, fp));
     // Saving again gives the same bytes.
     savePoseModel(r, dir / "q.model");
-    CHECK(readBytes(dir / "p.model") == readBytes(dir / "q.model"));
+    CHECK(test::readBytes(dir / "p.model") == test::readBytes(dir / "q.model"));
 }
 
 TEST_CASE("pose file: bad files are refused naming the path and the fault")
@@ -73,19 +61,19 @@ TEST_CASE("pose file: bad files are refused naming the path and the fault")
     const PoseModel& m = test::posedModel();
     test::TempDir dir;
     savePoseModel(m, dir / "p.model");
-    const std::string bytes = readBytes(dir / "p.model");
+    const std::string bytes = test::readBytes(dir / "p.model");
 
-    writeBytes(dir / "face.model", "FSKFACE" + std::string(1, '\0') + bytes.substr(8));
+    test::writeText(dir / "face.model", "FSKFACE" + std::string(1, '\0') + bytes.substr(8));
     REQUIRE_THROWS_WITH(loadPoseModel(dir / "face.model"), Catch::Contains("not a FaceSketch pose model"));
     std::string old = bytes;
     old[8] = 9;
-    writeBytes(dir / "old.model", old);
+    test::writeText(dir / "old.model", old);
     REQUIRE_THROWS_WITH(loadPoseModel(dir / "old.model"), Catch::Contains("version 9") && Catch::Contains("train-poses"));
-    writeBytes(dir / "short.model", bytes.substr(0, bytes.size() / 2));
+    test::writeText(dir / "short.model", bytes.substr(0, bytes.size() / 2));
     REQUIRE_THROWS_WITH(loadPoseModel(dir / "short.model"), Catch::Contains("truncated"));
     std::string flipped = bytes;
     flipped[bytes.size() / 2] ^= 0x10;
-    writeBytes(dir / "flipped.model", flipped);
+    test::writeText(dir / "flipped.model", flipped);
     REQUIRE_THROWS_WITH(loadPoseModel(dir / "flipped.model"), Catch::Contains("checksum mismatch"));
     REQUIRE_THROWS_WITH(loadPoseModel(dir / "missing.model"), Catch::Contains("missing.model"));
 

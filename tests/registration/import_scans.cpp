@@ -77,6 +77,7 @@ TEST_CASE("importScans: registers every good scan into the template's topology, 
 
     ScanImportOptions options;
     options.registration.mapWidth = options.registration.mapHeight = 256;
+    options.threads = 1; // progress after every scan, in file order
     std::vector<std::string> seen;
     options.progress = [&](int done, int total, const std::string& name) {
         REQUIRE(total == 4);
@@ -109,6 +110,23 @@ TEST_CASE("importScans: registers every good scan into the template's topology, 
         if (u.z() > 0.6 && std::abs(u.y()) < 0.5)
             REQUIRE(surface.closest(anna.V.row(v).transpose()).distance < 0.015); // 0.15 mm, as registerScan's own test
     }
+
+    // On several threads: the same failures in file order, the same bytes written, and the
+    // progress ends at every scan done.
+    options.threads = 3;
+    int last = 0;
+    options.progress = [&](int done, int total, const std::string&) {
+        REQUIRE(total == 4);
+        REQUIRE(done >= last);
+        last = done;
+    };
+    const ScanImport threaded = importScans(dir / "scans", templ, dir / "out3", options);
+    REQUIRE(last == 4);
+    REQUIRE(threaded.failures.size() == 2);
+    for (size_t k = 0; k < 2; ++k)
+        REQUIRE(threaded.failures[k].reason == result.failures[k].reason);
+    for (const char* file : { "manifest.json", "faces/anna.ply", "faces/bert.ply" })
+        REQUIRE(test::readBytes(dir / "out3" / file) == test::readBytes(dir / "out" / file));
 }
 
 TEST_CASE("importScans: nothing is written when no scan registers, and the reasons are listed")

@@ -12,8 +12,6 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <fstream>
-#include <iterator>
 #include <numbers>
 
 using namespace facesketch;
@@ -311,8 +309,7 @@ TEST_CASE("face_model: the segments fitted on several threads give the model one
         REQUIRE(model.segmentation.size() >= 3); // enough segments for the threads to share
         const std::filesystem::path path = dir / ("threads-" + std::to_string(threads) + ".model");
         saveFaceModel(model, path);
-        std::ifstream in(path, std::ios::binary);
-        return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+        return test::readBytes(path);
     };
     const std::string one = savedBytes(1);
     REQUIRE(!one.empty());

@@ -8,8 +8,6 @@
 
 #include <catch2/catch.hpp>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 
 using namespace facesketch;
 using namespace facesketch::stats;
@@ -65,18 +63,6 @@ FaceModel randomModel()
     return model;
 }
 
-std::string readBytes(const std::filesystem::path& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    return { std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>() };
-}
-
-void writeBytes(const std::filesystem::path& path, const std::string& bytes)
-{
-    std::ofstream out(path, std::ios::binary);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-}
-
 } // namespace
 
 TEST_CASE("model_file: a saved model loads back bit for bit")
@@ -114,22 +100,22 @@ TEST_CASE("model_file: wrong, old, truncated and corrupt files give clear errors
 {
     test::TempDir dir;
     saveFaceModel(randomModel(), dir / "good.model");
-    const std::string good = readBytes(dir / "good.model");
+    const std::string good = test::readBytes(dir / "good.model");
 
-    writeBytes(dir / "mesh.ply", "ply\nformat binary_little_endian 1.0\n");
+    test::writeText(dir / "mesh.ply", "ply\nformat binary_little_endian 1.0\n");
     REQUIRE_THROWS_WITH(loadFaceModel(dir / "mesh.ply"), Catch::Contains("not a FaceSketch face model"));
 
     std::string old = good;
     old[8] = 7; // version 7
-    writeBytes(dir / "old.model", old);
+    test::writeText(dir / "old.model", old);
     REQUIRE_THROWS_WITH(loadFaceModel(dir / "old.model"), Catch::Contains("version 7"));
 
-    writeBytes(dir / "short.model", good.substr(0, good.size() / 2));
+    test::writeText(dir / "short.model", good.substr(0, good.size() / 2));
     REQUIRE_THROWS_WITH(loadFaceModel(dir / "short.model"), Catch::Contains("truncated"));
 
     std::string flipped = good;
     flipped[good.size() / 2] ^= 0x10;
-    writeBytes(dir / "flipped.model", flipped);
+    test::writeText(dir / "flipped.model", flipped);
     REQUIRE_THROWS_WITH(loadFaceModel(dir / "flipped.model"), Catch::Contains("checksum mismatch"));
 
     REQUIRE_THROWS_WITH(loadFaceModel(dir / "missing.model"), Catch::Contains("missing.model"));
@@ -186,9 +172,9 @@ TEST_CASE("model_file: the model file keeps the head layout, and version 1 files
     CHECK(back.head.parts[0].anchors == part.anchors);
     CHECK(back.head.parts[0].scale == false);
 
-    std::string bytes = readBytes(dir / "head.model");
+    std::string bytes = test::readBytes(dir / "head.model");
     bytes[8] = 1; // the version written before the head layout existed
-    writeBytes(dir / "v1.model", bytes);
+    test::writeText(dir / "v1.model", bytes);
     REQUIRE_THROWS_WITH(loadFaceModel(dir / "v1.model"), Catch::Contains("version 1") && Catch::Contains("retrain"));
 }
 
@@ -222,7 +208,7 @@ TEST_CASE("model_file: hostile sizes are refused before anything of their size i
 {
     test::TempDir dir;
     const auto loadError = [&](const std::string& bytes) {
-        writeBytes(dir / "hostile.model", bytes);
+        test::writeText(dir / "hostile.model", bytes);
         try {
             (void)loadFaceModel(dir / "hostile.model");
         } catch (const Error& e) {

@@ -85,7 +85,7 @@ void writeSynthDataset(const fs::path& folder, const SynthOptions& options, cons
                         ++done;
                     }
             },
-            [&] {
+            [&](int) {
                 if (progress)
                     progress(done.load(), total);
             });
