@@ -98,6 +98,10 @@ void addTrainPosesCommand(CLI::App& root)
     cmd->add_option("--joint-dim", c->options.mapping.jointLatentDim, "Mapping: latent dimension of the joint mixture")
         ->capture_default_str()
         ->check(CLI::Range(1, 1000));
+    cmd->add_option("--threads", c->options.completion.threads,
+           "Threads fitting the completion candidates (0: all hardware threads; the model is the same for any number)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 256));
     cmd->callback([c] { runTrainPoses(*c); });
 }
 

@@ -1,10 +1,13 @@
 #include "pose/completion.h"
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "stats/check.h"
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <utility>
 
 namespace facesketch::pose {
 
@@ -102,13 +105,10 @@ CompletionModel fitCompletion(
     if (options.candidates.empty())
         fail("fitCompletion: no candidate numbers of components");
 
-    struct Fitted {
-        CompletionScore score;
-        stats::Mppca model;
-    };
-    std::vector<Fitted> fitted;
+    // The candidates (K, q) in the order they are scored; bad values fail here, before any fit.
     if (options.latentDims.empty())
         fail("fitCompletion: no candidate latent dimensions");
+    std::vector<std::pair<int, int>> grid;
     for (int K : options.candidates) {
         if (K < 1)
             fail("fitCompletion: candidate ", K, " components (must be >= 1)");
@@ -117,26 +117,42 @@ CompletionModel fitCompletion(
         for (int q : options.latentDims) {
             if (q < 1)
                 fail("fitCompletion: candidate latent dimension ", q, " (must be >= 1)");
-            stats::MppcaOptions o;
-            o.components = K;
-            o.latentDim = static_cast<int>(std::min<Eigen::Index>(q, d - 1));
-            o.restarts = options.restarts;
-            stats::MppcaFit fit;
-            try {
-                fit = stats::fitMppca(train, o);
-            } catch (const stats::DegenerateFit&) {
-                continue;
-            }
-            Fitted f;
-            f.model = std::move(fit.model);
-            f.score.components = K;
-            f.score.fitted = static_cast<int>(f.model.size());
-            f.score.latentDim = o.latentDim;
-            f.score.minimalError = minimalPoseError(f.model, validation, minimal);
-            f.score.logLikelihood = stats::logLikelihood(f.model, train).mean();
-            fitted.push_back(std::move(f));
+            grid.emplace_back(K, static_cast<int>(std::min<Eigen::Index>(q, d - 1)));
         }
     }
+
+    // Every candidate is fitted and scored on its own, so they run on all threads, each into its
+    // own slot; the choice below reads the slots in grid order, as one thread would.
+    struct Fitted {
+        CompletionScore score;
+        stats::Mppca model;
+    };
+    std::vector<std::optional<Fitted>> slots(grid.size());
+    parallelFor(static_cast<int>(grid.size()), options.threads, [&](int i) {
+        const auto [K, q] = grid[static_cast<size_t>(i)];
+        stats::MppcaOptions o;
+        o.components = K;
+        o.latentDim = q;
+        o.restarts = options.restarts;
+        stats::MppcaFit fit;
+        try {
+            fit = stats::fitMppca(train, o);
+        } catch (const stats::DegenerateFit&) {
+            return;
+        }
+        Fitted f;
+        f.model = std::move(fit.model);
+        f.score.components = K;
+        f.score.fitted = static_cast<int>(f.model.size());
+        f.score.latentDim = q;
+        f.score.minimalError = minimalPoseError(f.model, validation, minimal);
+        f.score.logLikelihood = stats::logLikelihood(f.model, train).mean();
+        slots[static_cast<size_t>(i)] = std::move(f);
+    });
+    std::vector<Fitted> fitted;
+    for (std::optional<Fitted>& f : slots)
+        if (f)
+            fitted.push_back(std::move(*f));
     if (fitted.empty())
         fail("fitCompletion: no candidate (components, latent dimension) could be fit on ", train.rows(), " poses");
 

@@ -68,6 +68,9 @@ struct CompletionOptions {
     std::vector<int> latentDims { 2, 4, 8 };
     /// EM restarts per fit (stats/mppca.h MppcaOptions::restarts).
     int restarts = 2;
+    /// Threads fitting the candidates (0: one per hardware thread); the model and the scores
+    /// are the same for any number.
+    int threads = 0;
 };
 
 /// How one candidate (K, q) did.

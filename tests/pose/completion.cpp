@@ -85,6 +85,32 @@ TEST_CASE("completion: a mixture completes a pose from one FP where one PPCA can
     CHECK(c.fp.segment<3>(0) == Eigen::Vector3d(2.0, 0.0, 0.0));
 }
 
+TEST_CASE("completion: the candidates fitted on several threads give the scores and mixtures one thread gives")
+{
+    const PoseSet train = toySet(40, 3);
+    const PoseSet validation = toySet(10, 4);
+    CompletionOptions o;
+    o.candidates = { 1, 2, 3, 4 };
+    o.latentDims = { 1, 2 };
+    o.threads = 1;
+    const CompletionModel one = fitCompletion(train.fpDisplacements, validation, kToyTable, o);
+    REQUIRE(one.scores.size() == 8);
+    for (const int threads : { 3, 0 }) {
+        o.threads = threads;
+        const CompletionModel many = fitCompletion(train.fpDisplacements, validation, kToyTable, o);
+        REQUIRE(many.scores.size() == one.scores.size());
+        for (size_t i = 0; i < one.scores.size(); ++i) {
+            CHECK(many.scores[i].components == one.scores[i].components);
+            CHECK(many.scores[i].fitted == one.scores[i].fitted);
+            CHECK(many.scores[i].latentDim == one.scores[i].latentDim);
+            CHECK(many.scores[i].minimalError == one.scores[i].minimalError);
+            CHECK(many.scores[i].logLikelihood == one.scores[i].logLikelihood);
+        }
+        CHECK(test::sameMixture(many.primary, one.primary));
+        CHECK(test::sameMixture(many.alternative, one.alternative));
+    }
+}
+
 TEST_CASE("completion: an FP seen only in a view gets its depth from the model")
 {
     const PoseSet train = toySet(40, 3);

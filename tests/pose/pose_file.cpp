@@ -10,22 +10,6 @@
 using namespace facesketch;
 using namespace facesketch::pose;
 
-namespace {
-
-bool sameMixture(const stats::Mppca& a, const stats::Mppca& b)
-{
-    if (a.size() != b.size() || a.priors != b.priors)
-        return false;
-    for (Eigen::Index k = 0; k < a.size(); ++k) {
-        const auto &p = a.components[static_cast<size_t>(k)], &q = b.components[static_cast<size_t>(k)];
-        if (p.mean != q.mean || p.W != q.W || p.sigma2 != q.sigma2)
-            return false;
-    }
-    return true;
-}
-
-} // namespace
-
 TEST_CASE("pose file: a model reads back exactly and maps the same")
 {
     const PoseModel& m = test::posedModel();
@@ -43,11 +27,11 @@ TEST_CASE("pose file: a model reads back exactly and maps the same")
     REQUIRE(r.minimal.size() == m.minimal.size());
     CHECK(r.minimal.back().pose == m.minimal.back().pose);
     CHECK(r.minimal.back().fps == m.minimal.back().fps);
-    CHECK(sameMixture(r.completion.primary, m.completion.primary));
-    CHECK(sameMixture(r.completion.alternative, m.completion.alternative));
+    CHECK(test::sameMixture(r.completion.primary, m.completion.primary));
+    CHECK(test::sameMixture(r.completion.alternative, m.completion.alternative));
     REQUIRE(r.completion.scores.size() == m.completion.scores.size());
     CHECK(r.completion.scores[1].minimalError == m.completion.scores[1].minimalError);
-    CHECK(sameMixture(r.mapping.joint, m.mapping.joint));
+    CHECK(test::sameMixture(r.mapping.joint, m.mapping.joint));
     CHECK(r.mapping.mesh.W == m.mapping.mesh.W);
     const Eigen::VectorXd fp = m.fpTraining.row(40).transpose();
     CHECK(mapToMesh(r.mapping, fp) == mapToMesh(m.mapping, fp));

@@ -22,6 +22,19 @@ inline std::filesystem::path minimalPosesFile()
     return std::filesystem::path(source ? source : ".") / "assets" / "minimal-poses.json";
 }
 
+/// Whether two mixtures are equal to the last bit (priors, means, loadings, noise).
+inline bool sameMixture(const stats::Mppca& a, const stats::Mppca& b)
+{
+    if (a.size() != b.size() || a.priors != b.priors)
+        return false;
+    for (Eigen::Index k = 0; k < a.size(); ++k) {
+        const auto &p = a.components[static_cast<size_t>(k)], &q = b.components[static_cast<size_t>(k)];
+        if (p.mean != q.mean || p.W != q.W || p.sigma2 != q.sigma2)
+            return false;
+    }
+    return true;
+}
+
 struct PosedSynth {
     TempDir dir;
     dataset::Dataset dataset;
