@@ -47,11 +47,19 @@ TEST_CASE("parallelFor: onCaller runs on the calling thread only, after each ind
     const std::thread::id caller = std::this_thread::get_id();
     std::vector<int> ranOnCaller, reported; // touched by the calling thread only
     std::atomic<int> wrongThread { 0 };
+    // The other threads wait until the calling thread has run an index, so it runs some
+    // whatever the scheduling (with 200 quick indices the others could otherwise take them all).
+    // It always gets one: the other three threads hold one index each at most while waiting.
+    std::atomic<bool> callerRan { false };
     parallelFor(
         200, 4,
         [&](int i) {
-            if (std::this_thread::get_id() == caller)
+            if (std::this_thread::get_id() == caller) {
                 ranOnCaller.push_back(i);
+                callerRan = true;
+            } else
+                while (!callerRan)
+                    std::this_thread::yield();
         },
         [&](int i) {
             if (std::this_thread::get_id() != caller)
