@@ -1,8 +1,10 @@
 #pragma once
-// One loop over independent items on several threads. The engine's heavy loops (synthesising
-// faces, estimating every face's curvature) are per item with nothing shared, so a plain pool
-// that hands out indices in order is all they need; results go into slots owned by the index,
-// which keeps every output independent of the number of threads.
+// One loop over independent items on several threads. The engine's heavy CPU loops are per item
+// with nothing shared: synthesising faces, fitting the face model's segments and the pose
+// completion's candidates, estimating every face's curvature in `eval realism`, registering
+// scans. A plain pool that hands out indices in order is all they need. Each result goes into a
+// slot owned by its index and is combined afterwards in index order, which keeps every output
+// byte-identical for any number of threads.
 
 #include <functional>
 
