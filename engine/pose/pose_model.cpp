@@ -1,9 +1,11 @@
 #include "pose/pose_model.h"
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "stats/check.h"
 
 #include <cmath>
+#include <exception>
 
 namespace facesketch::pose {
 
@@ -30,8 +32,23 @@ PoseModel trainPoseModel(
         for (Eigen::Index p = 0; p < train.poseCount(); ++p)
             model.fpTrainingPose.push_back(static_cast<int>(p));
     model.minimal = minimal;
-    model.completion = fitCompletion(train.fpDisplacements, validation, minimal, options.completion);
-    model.mapping = fitMapping(train.fpDisplacements, train.meshDisplacements, options.mapping);
+    // The completion and the mapping are independent fits. The mapping (one PPCA over every mesh
+    // coordinate) runs beside the completion's candidates, unless one thread was asked for. Each
+    // keeps its own error, and the completion's is reported first, as when they ran in turn.
+    std::exception_ptr failed[2];
+    parallelFor(2, options.completion.threads == 1 ? 1 : 2, [&](int task) {
+        try {
+            if (task == 0)
+                model.completion = fitCompletion(train.fpDisplacements, validation, minimal, options.completion);
+            else
+                model.mapping = fitMapping(train.fpDisplacements, train.meshDisplacements, options.mapping);
+        } catch (...) {
+            failed[task] = std::current_exception();
+        }
+    });
+    for (const std::exception_ptr& e : failed)
+        if (e)
+            std::rethrow_exception(e);
     return model;
 }
 
