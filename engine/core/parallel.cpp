@@ -24,7 +24,8 @@ void parallelFor(int count, int threads, const std::function<void(int)>& body, c
     threads = std::min(threads, count);
 
     std::atomic<int> next { 0 };
-    std::exception_ptr error;
+    std::exception_ptr error; // of the lowest failing index so far
+    int errorIndex = count;
     std::mutex errorMutex;
     auto work = [&](bool caller) {
         for (int i = next++; i < count; i = next++) {
@@ -34,8 +35,10 @@ void parallelFor(int count, int threads, const std::function<void(int)>& body, c
                     onCaller(i);
             } catch (...) {
                 std::lock_guard<std::mutex> lock(errorMutex);
-                if (!error)
+                if (i < errorIndex) {
                     error = std::current_exception();
+                    errorIndex = i;
+                }
                 next = count; // stop handing out indices
             }
         }

@@ -19,9 +19,11 @@ namespace facesketch {
 /// After each index it ran, the calling thread runs onCaller(index) (when set): the place for
 /// progress reports that must come from one thread.
 ///
-/// The first exception thrown by body (or onCaller) stops the handing out of indices; indices
-/// already started finish, and the exception is rethrown here once every thread has joined.
-/// Throws Error for a negative count or threads.
+/// An exception thrown by body (or onCaller) stops the handing out of indices; indices already
+/// started finish. Once every thread has joined, the exception of the lowest index that failed
+/// is rethrown: the one a single thread would have met first, since every index below a failing
+/// one has been handed out (in order) before it. So a deterministic body reports the same error
+/// for any number of threads. Throws Error for a negative count or threads.
 void parallelFor(int count, int threads, const std::function<void(int)>& body, const std::function<void(int)>& onCaller = {});
 
 } // namespace facesketch

@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "io/mesh_io.h"
 
 #include <algorithm>
@@ -98,10 +99,12 @@ Eigen::MatrixXd loadShapes(const Dataset& dataset, Role role, const std::string&
     }
     const auto samples = m.samplesWithRole(role);
     Eigen::MatrixXd shapes(static_cast<Eigen::Index>(samples.size()), 3 * (end - begin));
-    for (size_t i = 0; i < samples.size(); ++i) {
-        const Mesh mesh = loadMesh(dataset, samples[i]->file);
-        shapes.row(static_cast<Eigen::Index>(i)) = flatten(mesh.V.middleRows(begin, end - begin));
-    }
+    // The meshes load on all threads, each into its own row; a bad file is reported as when they
+    // loaded in turn (parallelFor rethrows the lowest failing index's error).
+    parallelFor(static_cast<int>(samples.size()), 0, [&](int i) {
+        const Mesh mesh = loadMesh(dataset, samples[static_cast<size_t>(i)]->file);
+        shapes.row(i) = flatten(mesh.V.middleRows(begin, end - begin));
+    });
     return shapes;
 }
 

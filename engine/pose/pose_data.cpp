@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <exception>
 #include <map>
 #include <optional>
 #include <utility>
@@ -146,37 +145,29 @@ PoseSet loadPoseSet(const dataset::Dataset& dataset, const std::vector<dataset::
     set.fpDisplacements.resize(I * P, 3 * set.fps.size());
     for (const dataset::Sample* s : samples)
         set.identities.push_back({ s->name, s->role });
-    // Identities load on all threads, each into its own rows. A failure is kept per identity and
-    // the first in manifest order is reported, as when they loaded in turn.
-    std::vector<std::exception_ptr> failed(samples.size());
+    // Identities load on all threads, each into its own rows; a failure is reported as when they
+    // loaded in turn (parallelFor rethrows the lowest failing index's error).
     parallelFor(static_cast<int>(I), 0, [&](int i) {
-        try {
-            const dataset::Sample& s = *samples[static_cast<size_t>(i)];
-            const Mesh neutral = dataset::loadMesh(dataset, s.file);
-            validateMesh(neutral, (dataset.folder / s.file).string());
-            set.neutrals.row(i) = asVector(neutral.V).transpose();
-            const Eigen::VectorXd neutralFps = set.fps.gather(neutral.V);
+        const dataset::Sample& s = *samples[static_cast<size_t>(i)];
+        const Mesh neutral = dataset::loadMesh(dataset, s.file);
+        validateMesh(neutral, (dataset.folder / s.file).string());
+        set.neutrals.row(i) = asVector(neutral.V).transpose();
+        const Eigen::VectorXd neutralFps = set.fps.gather(neutral.V);
 
-            const auto& poses = byIdentity.at(s.name);
-            if (static_cast<Eigen::Index>(poses.size()) != P)
-                fail(where, ": identity '", s.name, "' has ", poses.size(), " poses, '", samples.front()->name, "' has ", P);
-            for (Eigen::Index p = 0; p < P; ++p) {
-                const std::string& name = set.poseNames[static_cast<size_t>(p)];
-                const auto it = std::find_if(poses.begin(), poses.end(), [&](const dataset::Pose* q) { return q->name == name; });
-                if (it == poses.end())
-                    fail(where, ": identity '", s.name, "' has no pose '", name, "'");
-                const Mesh posed = dataset::loadMesh(dataset, (*it)->file);
-                validateMesh(posed, (dataset.folder / (*it)->file).string());
-                set.meshDisplacements.row(set.row(i, p)) = (asVector(posed.V) - asVector(neutral.V)).transpose();
-                set.fpDisplacements.row(set.row(i, p)) = (set.fps.gather(posed.V) - neutralFps).transpose();
-            }
-        } catch (...) {
-            failed[static_cast<size_t>(i)] = std::current_exception();
+        const auto& poses = byIdentity.at(s.name);
+        if (static_cast<Eigen::Index>(poses.size()) != P)
+            fail(where, ": identity '", s.name, "' has ", poses.size(), " poses, '", samples.front()->name, "' has ", P);
+        for (Eigen::Index p = 0; p < P; ++p) {
+            const std::string& name = set.poseNames[static_cast<size_t>(p)];
+            const auto it = std::find_if(poses.begin(), poses.end(), [&](const dataset::Pose* q) { return q->name == name; });
+            if (it == poses.end())
+                fail(where, ": identity '", s.name, "' has no pose '", name, "'");
+            const Mesh posed = dataset::loadMesh(dataset, (*it)->file);
+            validateMesh(posed, (dataset.folder / (*it)->file).string());
+            set.meshDisplacements.row(set.row(i, p)) = (asVector(posed.V) - asVector(neutral.V)).transpose();
+            set.fpDisplacements.row(set.row(i, p)) = (set.fps.gather(posed.V) - neutralFps).transpose();
         }
     });
-    for (const std::exception_ptr& e : failed)
-        if (e)
-            std::rethrow_exception(e);
     return set;
 }
 

@@ -5,7 +5,6 @@
 #include "stats/check.h"
 
 #include <cmath>
-#include <exception>
 
 namespace facesketch::pose {
 
@@ -33,22 +32,14 @@ PoseModel trainPoseModel(
             model.fpTrainingPose.push_back(static_cast<int>(p));
     model.minimal = minimal;
     // The completion and the mapping are independent fits. The mapping (one PPCA over every mesh
-    // coordinate) runs beside the completion's candidates, unless one thread was asked for. Each
-    // keeps its own error, and the completion's is reported first, as when they ran in turn.
-    std::exception_ptr failed[2];
+    // coordinate) runs beside the completion's candidates, unless one thread was asked for. If
+    // both fail, the completion's error is the one reported, as when they ran in turn.
     parallelFor(2, options.completion.threads == 1 ? 1 : 2, [&](int task) {
-        try {
-            if (task == 0)
-                model.completion = fitCompletion(train.fpDisplacements, validation, minimal, options.completion);
-            else
-                model.mapping = fitMapping(train.fpDisplacements, train.meshDisplacements, options.mapping);
-        } catch (...) {
-            failed[task] = std::current_exception();
-        }
+        if (task == 0)
+            model.completion = fitCompletion(train.fpDisplacements, validation, minimal, options.completion);
+        else
+            model.mapping = fitMapping(train.fpDisplacements, train.meshDisplacements, options.mapping);
     });
-    for (const std::exception_ptr& e : failed)
-        if (e)
-            std::rethrow_exception(e);
     return model;
 }
 

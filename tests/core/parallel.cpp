@@ -1,6 +1,6 @@
 // Tests of core/parallel: every index runs once whatever the threads, one thread keeps the
-// order on the calling thread, onCaller runs only there, and the first error stops the work
-// and reaches the caller after every thread has joined.
+// order on the calling thread, onCaller runs only there, and an error stops the work and
+// reaches the caller after every thread has joined, the lowest failing index's when several fail.
 #include "core/parallel.h"
 #include "core/error.h"
 
@@ -72,7 +72,7 @@ TEST_CASE("parallelFor: onCaller runs on the calling thread only, after each ind
     REQUIRE(reported == ranOnCaller);
 }
 
-TEST_CASE("parallelFor: the first error stops the work and is rethrown after the join")
+TEST_CASE("parallelFor: an error stops the work and is rethrown after the join, the lowest failing index's")
 {
     // One thread: nothing after the failing index runs.
     std::vector<int> ran;
@@ -97,6 +97,25 @@ TEST_CASE("parallelFor: the first error stops the work and is rethrown after the
                             }),
         "first index failed");
     REQUIRE(started.load() < 1000);
+
+    // Two failing indices: the lower one's error is rethrown, even when the higher one fails
+    // first (index 3 waits until index 7 has thrown).
+    for (const int threads : { 1, 2, 4 }) {
+        std::atomic<bool> sevenThrew { false };
+        REQUIRE_THROWS_WITH(parallelFor(10, threads,
+                                [&](int i) {
+                                    if (i == 7) {
+                                        sevenThrew = true;
+                                        throw std::runtime_error("index 7 failed");
+                                    }
+                                    if (i == 3) {
+                                        for (int wait = 0; threads > 1 && !sevenThrew && wait < 2000; ++wait)
+                                            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+                                        throw std::runtime_error("index 3 failed");
+                                    }
+                                }),
+            "index 3 failed");
+    }
 
     // An error in onCaller stops the work too.
     int calls = 0;
